@@ -1,0 +1,85 @@
+# Standalone build of the module: the library, its exported CMake package, the C++ tests
+# (plain GoogleTest, since Debian installs no opencv_ts), the pybind11 Python module and the
+# perf suite. Included from ../CMakeLists.txt when not inside an OpenCV build.
+include(GNUInstallDirs)
+include(CMakePackageConfigHelpers)
+
+set(CMAKE_CXX_STANDARD 17)
+set(CMAKE_CXX_STANDARD_REQUIRED ON)
+set(CMAKE_CXX_EXTENSIONS OFF)
+set(CMAKE_POSITION_INDEPENDENT_CODE ON)
+
+set(RCME_OPENCV_COMPONENTS core imgproc features2d calib3d)
+find_package(OpenCV 4.6 REQUIRED COMPONENTS ${RCME_OPENCV_COMPONENTS})
+find_package(Eigen3 3.3 REQUIRED NO_MODULE)
+
+set(RCME_MODULE_DIR "${CMAKE_CURRENT_LIST_DIR}/..")
+file(GLOB_RECURSE RCME_SOURCES CONFIGURE_DEPENDS "${RCME_MODULE_DIR}/src/*.cpp")
+file(GLOB RCME_PUBLIC_HEADERS CONFIGURE_DEPENDS "${RCME_MODULE_DIR}/include/opencv2/rcme/*.hpp")
+
+# The sources are compiled once: the shared library exports only the public API, and the
+# C++ tests link the same objects directly to reach the components in cv::rcme::detail.
+add_library(rcme_objects OBJECT ${RCME_SOURCES})
+set_target_properties(rcme_objects PROPERTIES
+  CXX_VISIBILITY_PRESET hidden
+  VISIBILITY_INLINES_HIDDEN ON)
+# CVAPI_EXPORTS turns CV_EXPORTS into default visibility, as in OpenCV's own module targets.
+target_compile_definitions(rcme_objects PRIVATE CVAPI_EXPORTS)
+target_compile_options(rcme_objects PRIVATE -Wall -Wextra)
+target_include_directories(rcme_objects
+  PUBLIC $<BUILD_INTERFACE:${RCME_MODULE_DIR}/include>
+  PRIVATE ${RCME_MODULE_DIR}/src)
+target_link_libraries(rcme_objects PUBLIC opencv_core opencv_imgproc opencv_features2d
+  opencv_calib3d Eigen3::Eigen)
+
+add_library(rcme SHARED $<TARGET_OBJECTS:rcme_objects>)
+add_library(rcme::rcme ALIAS rcme)
+set_target_properties(rcme PROPERTIES
+  OUTPUT_NAME opencv_rcme
+  VERSION ${PROJECT_VERSION}
+  SOVERSION ${PROJECT_VERSION_MAJOR}
+  EXPORT_NAME rcme)
+target_include_directories(rcme PUBLIC
+  $<BUILD_INTERFACE:${RCME_MODULE_DIR}/include>
+  $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>)
+target_link_libraries(rcme PUBLIC opencv_core opencv_calib3d
+  PRIVATE opencv_imgproc opencv_features2d)
+
+install(TARGETS rcme EXPORT rcmeTargets
+  LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
+  ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
+  RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+install(FILES "${RCME_MODULE_DIR}/include/opencv2/rcme.hpp"
+  DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/opencv2)
+install(FILES ${RCME_PUBLIC_HEADERS} DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/opencv2/rcme)
+set(RCME_CMAKE_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/rcme)
+install(EXPORT rcmeTargets NAMESPACE rcme:: DESTINATION ${RCME_CMAKE_DIR})
+configure_package_config_file("${CMAKE_CURRENT_LIST_DIR}/rcmeConfig.cmake.in"
+  "${CMAKE_BINARY_DIR}/rcmeConfig.cmake" INSTALL_DESTINATION ${RCME_CMAKE_DIR})
+write_basic_package_version_file("${CMAKE_BINARY_DIR}/rcmeConfigVersion.cmake"
+  VERSION ${PROJECT_VERSION} COMPATIBILITY SameMajorVersion)
+install(FILES "${CMAKE_BINARY_DIR}/rcmeConfig.cmake" "${CMAKE_BINARY_DIR}/rcmeConfigVersion.cmake"
+  DESTINATION ${RCME_CMAKE_DIR})
+
+if(RCME_BUILD_TESTS)
+  find_package(GTest REQUIRED)
+  find_package(Threads REQUIRED)
+  file(GLOB RCME_TEST_SOURCES CONFIGURE_DEPENDS "${RCME_MODULE_DIR}/test/*.cpp")
+  add_executable(opencv_test_rcme ${RCME_TEST_SOURCES})
+  target_compile_definitions(opencv_test_rcme PRIVATE RCME_STANDALONE_TESTS
+    RCME_SHARED_DATA_DIR="${PROJECT_SOURCE_DIR}/../shared/data"
+    RCME_SAMPLES_DATA_DIR="${PROJECT_SOURCE_DIR}/samples/data")
+  target_include_directories(opencv_test_rcme PRIVATE ${RCME_MODULE_DIR}/test ${RCME_MODULE_DIR}/src)
+  target_link_libraries(opencv_test_rcme PRIVATE rcme_objects GTest::gtest Threads::Threads
+    opencv_imgcodecs)
+  include(GoogleTest)
+  gtest_discover_tests(opencv_test_rcme DISCOVERY_TIMEOUT 120)
+endif()
+
+if(RCME_BUILD_PYTHON)
+  add_subdirectory("${RCME_MODULE_DIR}/misc/python/standalone" "${CMAKE_BINARY_DIR}/python_module")
+endif()
+
+if(RCME_BUILD_PERF)
+  add_subdirectory("${RCME_MODULE_DIR}/perf" "${CMAKE_BINARY_DIR}/perf")
+endif()

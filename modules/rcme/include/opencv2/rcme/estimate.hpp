@@ -1,0 +1,133 @@
+// This file is part of the rcme module. It is subject to the license terms in the LICENSE file
+// found in the top-level directory of this distribution.
+
+#ifndef OPENCV_RCME_ESTIMATE_HPP
+#define OPENCV_RCME_ESTIMATE_HPP
+
+#include "opencv2/rcme/params.hpp"
+
+namespace cv {
+namespace rcme {
+
+//! @addtogroup rcme
+//! @{
+
+/** @brief Estimates the two-view geometry and returns everything in one Report.
+
+@param points1 N points of the first image: Nx2, 1xN or Nx1 with two channels (CV_32F or CV_64F),
+or a std::vector<Point2f>/<Point2d>. Must be finite.
+@param points2 The N corresponding points of the second image, same layout rules.
+@param cameraMatrix 3x3 intrinsic matrix shared by both views, or an empty array for the
+uncalibrated case (then only F is estimated).
+@param params Method and parameters.
+
+Throws cv::Exception (StsBadArg, StsBadSize, StsUnmatchedSizes) naming the argument when an
+input is malformed; reports a non-success status when the input is well-formed but no
+trustworthy model can be found from it.
+*/
+CV_EXPORTS_W Report estimateRelativeMotion(InputArray points1, InputArray points2,
+                                           InputArray cameraMatrix,
+                                           const Params& params = Params());
+
+/** @brief Fundamental matrix with an explicit status.
+
+@param points1 see estimateRelativeMotion.
+@param points2 see estimateRelativeMotion.
+@param params method and parameters.
+@param mask output Nx1 CV_8U mask, 1 for inliers; always written (all zeros on failure).
+@param status outcome; the returned matrix is empty unless it is #STATUS_SUCCESS.
+@return 3x3 CV_64F fundamental matrix with ||F|| = 1 such that x2^T F x1 = 0.
+*/
+CV_EXPORTS_W Mat findFundamentalMat(InputArray points1, InputArray points2, const Params& params,
+                                    OutputArray mask, CV_OUT Status& status);
+
+/** @brief Fundamental matrix of a calibrated pair: the hypotheses are essential matrices, so the
+returned F = K^-T E K^-1 has two equal singular values. Arguments as above plus the camera
+matrix (see estimateRelativeMotion). */
+CV_EXPORTS_W Mat findFundamentalMat(InputArray points1, InputArray points2, InputArray cameraMatrix,
+                                    const Params& params, OutputArray mask, CV_OUT Status& status);
+
+/** @brief Drop-in for cv::findFundamentalMat.
+
+@param method cv::FM_RANSAC (mapped to #METHOD_STANDARD) or a #Method value; other OpenCV
+flags raise StsBadArg.
+@param ransacReprojThreshold inlier threshold in pixels (Params::threshold).
+@param confidence Params::confidence.
+@param maxIters Params::maxIterations.
+@param mask output Nx1 CV_8U inlier mask.
+@return F, or an empty matrix when the status is not #STATUS_SUCCESS (as OpenCV does).
+*/
+CV_EXPORTS_W Mat findFundamentalMat(InputArray points1, InputArray points2, int method,
+                                    double ransacReprojThreshold, double confidence, int maxIters,
+                                    OutputArray mask = noArray());
+
+//! @overload (not wrapped for Python, as in calib3d, where it would shadow the one above)
+CV_EXPORTS Mat findFundamentalMat(InputArray points1, InputArray points2, int method = FM_RANSAC,
+                                  double ransacReprojThreshold = 3., double confidence = 0.99,
+                                  OutputArray mask = noArray());
+
+/** @brief Essential matrix with an explicit status.
+
+@param cameraMatrix 3x3 intrinsic matrix shared by both views (required).
+@param params, mask, status as in findFundamentalMat.
+@return 3x3 CV_64F essential matrix with singular values (1, 1, 0).
+*/
+CV_EXPORTS_W Mat findEssentialMat(InputArray points1, InputArray points2, InputArray cameraMatrix,
+                                  const Params& params, OutputArray mask, CV_OUT Status& status);
+
+/** @brief Drop-in for cv::findEssentialMat.
+
+@param method cv::RANSAC (mapped to #METHOD_STANDARD) or a #Method value.
+@param prob Params::confidence.
+@param threshold inlier threshold in pixels.
+@param maxIters Params::maxIterations.
+@return E, or an empty matrix on failure.
+*/
+CV_EXPORTS_W Mat findEssentialMat(InputArray points1, InputArray points2, InputArray cameraMatrix,
+                                  int method = RANSAC, double prob = 0.999, double threshold = 1.0,
+                                  int maxIters = 1000, OutputArray mask = noArray());
+
+//! @overload Camera matrix given by focal length and principal point, as in OpenCV.
+CV_EXPORTS_W Mat findEssentialMat(InputArray points1, InputArray points2, double focal = 1.0,
+                                  Point2d pp = Point2d(0, 0), int method = RANSAC,
+                                  double prob = 0.999, double threshold = 1.0, int maxIters = 1000,
+                                  OutputArray mask = noArray());
+
+/** @brief Estimates E robustly and recovers the motion, with status and covariance.
+
+@param E output essential matrix.
+@param R output 3x3 rotation, @param t output 3x1 unit translation: x2 = R x1 + t.
+@param mask output Nx1 CV_8U mask of the inliers that also pass cheirality (points in front of
+both cameras), as cv::recoverPose leaves it.
+@param status outcome; E, R, t are empty unless it is #STATUS_SUCCESS.
+@param covariance optional output 5x5 covariance of the motion in its tangent space
+(see Report::covariance); empty when the method does not propagate uncertainty.
+@return the number of inliers that pass cheirality, as cv::recoverPose.
+*/
+CV_EXPORTS_W int recoverPose(InputArray points1, InputArray points2, InputArray cameraMatrix,
+                             OutputArray E, OutputArray R, OutputArray t, const Params& params,
+                             OutputArray mask, CV_OUT Status& status,
+                             OutputArray covariance = noArray());
+
+/** @brief Drop-in for cv::recoverPose from a known essential matrix: decomposes E and keeps the
+(R, t) that puts the most points in front of both cameras.
+
+@param mask input/output: on input, non-zero entries select the points to use (all when empty);
+on output, the selected points that pass cheirality.
+@return the number of points that pass cheirality.
+*/
+CV_EXPORTS_W int recoverPose(InputArray E, InputArray points1, InputArray points2,
+                             InputArray cameraMatrix, OutputArray R, OutputArray t,
+                             InputOutputArray mask = noArray());
+
+//! @overload Camera matrix given by focal length and principal point.
+CV_EXPORTS_W int recoverPose(InputArray E, InputArray points1, InputArray points2, OutputArray R,
+                             OutputArray t, double focal = 1.0, Point2d pp = Point2d(0, 0),
+                             InputOutputArray mask = noArray());
+
+//! @}
+
+} // namespace rcme
+} // namespace cv
+
+#endif // OPENCV_RCME_ESTIMATE_HPP

@@ -1,0 +1,148 @@
+// This file is part of the rcme module. It is subject to the license terms in the LICENSE file
+// found in the top-level directory of this distribution.
+
+#ifndef OPENCV_RCME_PARAMS_HPP
+#define OPENCV_RCME_PARAMS_HPP
+
+#include <opencv2/calib3d.hpp>
+#include <opencv2/core.hpp>
+
+namespace cv {
+namespace rcme {
+
+//! @addtogroup rcme
+//! @{
+
+/** @brief Robust estimation method.
+
+The values do not collide with OpenCV's own method flags, so they can be passed as the `method`
+argument of the drop-in overloads (where cv::FM_RANSAC and cv::RANSAC select #METHOD_STANDARD).
+*/
+enum Method
+{
+    METHOD_RCME = 1024,  //!< model quality aware RANSAC @cite Yeh2021RCME
+    METHOD_PRCME = 1025, //!< RCME without the model-sample consistency test
+    METHOD_STANDARD =
+        1026,             //!< Gold Standard: RANSAC, inlier count, MLE refinement @cite Hartley2004
+    METHOD_MLESAC = 1027, //!< MLESAC @cite Torr2000MLESAC
+    METHOD_COV_RANSAC = 1028 //!< Cov-RANSAC with SPRT @cite Raguram2009CovRANSAC
+};
+
+//! How minimal samples are drawn.
+enum SamplerKind
+{
+    SAMPLER_UNIFORM = 0, //!< every subset equally likely @cite Fischler1981
+    SAMPLER_PROSAC = 1   //!< progressive sampling by match quality @cite Chum2005PROSAC
+};
+
+//! Which minimal solver instantiates the hypotheses.
+enum MinimalSolverKind
+{
+    SOLVER_EIGHT_POINT = 0, //!< normalized 8-point @cite Hartley2004 (over-parameterized)
+    SOLVER_SEVEN_POINT = 1, //!< 7-point, up to three F (exact)
+    SOLVER_FIVE_POINT = 2   //!< 5-point, up to ten E (exact, needs the camera matrix)
+};
+
+/** @brief Outcome of an estimation. Every estimating function reports one.
+
+Only #STATUS_SUCCESS comes with a model; with any other status the returned matrices are empty
+and the mask is all zeros.
+*/
+enum Status
+{
+    STATUS_SUCCESS = 0, //!< a model was found and is returned
+    /** no hypothesis passed the method's acceptance tests: for RCME the inlier-set quality and
+    size tests, for every method a support no larger than chance would give. The input is too
+    poor to trust any motion from it (the paper's PQI). */
+    STATUS_POOR_QUALITY_INPUT = 1,
+    STATUS_NOT_ENOUGH_POINTS = 2, //!< fewer valid correspondences than the minimal solver needs
+    /** every sample, or the selected model, was degenerate: points identical or collinear, a
+    pure rotation, a motion that cheirality cannot resolve */
+    STATUS_DEGENERATE_CONFIGURATION = 3
+};
+
+/** @brief Parameters of the robust estimators, shaped like cv::UsacParams.
+
+Every field has a documented default; a default-constructed Params runs the Standard estimator
+with noise sigma 1 px. Construct from cv::UsacParams to carry over the fields the two share.
+*/
+struct CV_EXPORTS_W_SIMPLE Params
+{
+    //! Sets every field to its documented default.
+    CV_WRAP Params();
+    /** @brief Carries over the fields shared with cv::UsacParams: confidence, maxIterations,
+    randomGeneratorState, threshold, and sampler (uniform or PROSAC). The other USAC fields
+    (score, local optimisation, neighbourhoods, isParallel) have no counterpart and are ignored;
+    NAPSAC samplers raise cv::Error::StsBadArg. */
+    CV_WRAP explicit Params(const UsacParams& usacParams);
+
+    //! Robust method. Default #METHOD_STANDARD.
+    CV_PROP_RW Method method;
+    //! Sampler. Default #SAMPLER_UNIFORM.
+    CV_PROP_RW SamplerKind sampler;
+    //! Minimal solver. Default #SOLVER_EIGHT_POINT.
+    CV_PROP_RW MinimalSolverKind solver;
+    //! Standard deviation of the point noise, pixels per coordinate (assumption a.2). Default 1.
+    CV_PROP_RW double sigma;
+    /** Inlier threshold on the Sampson distance to the epipolar geometry, pixels. When <= 0
+    (default) it is derived from sigma: sigma * sqrt(chi2_1^-1(0.95)) = 1.96 sigma. */
+    CV_PROP_RW double threshold;
+    //! Confidence of the adaptive iteration bound, in (0, 1). Default 0.99.
+    CV_PROP_RW double confidence;
+    //! Maximum number of iterations (hypothesis draws). Default 1000.
+    CV_PROP_RW int maxIterations;
+    //! Run exactly maxIterations iterations, as in the paper's experiments. Default false.
+    CV_PROP_RW bool exactIterations;
+    //! Seed of the random generator; the same seed gives the same result. Default 0.
+    CV_PROP_RW int randomGeneratorState;
+    //! Refine the selected model by Gold Standard MLE on its inliers. Default true.
+    CV_PROP_RW bool refine;
+    //! Maximum Levenberg-Marquardt iterations of the refinement. Default 20.
+    CV_PROP_RW int refineIterations;
+    //! Significance level of RCME's tests (consistency and quality). Default 0.05.
+    CV_PROP_RW double alpha;
+    /** RCME's entropy threshold mu, as the excess of the mean inlier entropy over the noise
+    floor 1/2 log(2 pi e sigma^2), in nats; unit-free, so it keeps its meaning whatever the image
+    size or focal length. The paper's mu = -3.53 (f = 500 px, sigma = 1 px) is 1.27. */
+    CV_PROP_RW double entropyThreshold;
+    //! RCME's conservative coefficient lambda of the size test n_j/n >= lambda * omega_p, in [0.5,
+    //! 1].
+    CV_PROP_RW double inlierRatioFactor;
+    //! RCME's prior inlier ratio omega_p in (0, 1]; <= 0 (default) estimates it during the run.
+    CV_PROP_RW double priorInlierRatio;
+    //! Degrees of freedom of RCME's chi-square tests on the Sampson error (paper: 3). Default 1.
+    CV_PROP_RW int consistencyDof;
+};
+
+/** @brief Everything an estimation produced, for callers who want more than the model.
+
+Matrices are CV_64F; all but mask are empty unless status is #STATUS_SUCCESS.
+*/
+struct CV_EXPORTS_W_SIMPLE Report
+{
+    CV_WRAP Report();
+    CV_PROP_RW Status status;      //!< outcome; the models below are set only on success
+    CV_PROP_RW String message;     //!< why the status is not #STATUS_SUCCESS, empty otherwise
+    CV_PROP_RW Mat F;              //!< 3x3 fundamental matrix (pixels), ||F|| = 1
+    CV_PROP_RW Mat E;              //!< 3x3 essential matrix, only with a camera matrix
+    CV_PROP_RW Mat R;              //!< 3x3 rotation, only with a camera matrix
+    CV_PROP_RW Mat t;              //!< 3x1 unit translation, only with a camera matrix
+    CV_PROP_RW Mat mask;           //!< Nx1 CV_8U inlier mask, 0 or 1, always sized
+    CV_PROP_RW int inlierCount;    //!< number of ones in mask
+    CV_PROP_RW int iterations;     //!< hypotheses drawn
+    CV_PROP_RW double meanEntropy; //!< RCME's mean inlier entropy psi (nats), NaN for other methods
+    /** 5x5 covariance of the motion in the tangent space (rotation increment omega, rad, then
+    the two components of the translation direction increment), only with a camera matrix */
+    CV_PROP_RW Mat covariance;
+    CV_PROP_RW double timeSeconds; //!< wall time of the call
+};
+
+//! @brief A short English name of a #Status value, e.g. "poor quality input".
+CV_EXPORTS_W String statusToString(Status status);
+
+//! @}
+
+} // namespace rcme
+} // namespace cv
+
+#endif // OPENCV_RCME_PARAMS_HPP

@@ -1,0 +1,219 @@
+// This file is part of the rcme module. It is subject to the license terms in the LICENSE file
+// found in the top-level directory of this distribution.
+
+// Box 4 of Fig. 1, model refinement: the Gold Standard maximum-likelihood estimate on the inliers
+// (Hartley & Zisserman, alg. 11.3) in its first-order form, Levenberg-Marquardt on the Sampson
+// distances over a minimal parameterization (5-DoF motion with K, 7-DoF F without). The Gauss-
+// Newton matrix at the optimum also gives the motion's covariance, sigma^2 (J^T J)^-1.
+
+#include "framework/components.hpp"
+#include "geometry/epipolar.hpp"
+#include "geometry/motion_parameterization.hpp"
+
+namespace cv {
+namespace rcme {
+namespace detail {
+
+namespace {
+
+// The calibrated problem: the state is the motion; F = K^-T [t]x R K^-1.
+struct MotionProblem
+{
+    static constexpr int kDof = MotionTangent::kDof;
+    const Eigen::Matrix3d& Kinv;
+    Eigen::Matrix3d R;
+    Eigen::Vector3d t;
+    Eigen::Matrix3d pendingR;
+    Eigen::Vector3d pendingT;
+
+    Eigen::Matrix3d fundamental(const Eigen::Matrix3d& Rm, const Eigen::Vector3d& tm) const
+    {
+        return Kinv.transpose() * skew(tm) * Rm * Kinv;
+    }
+    Eigen::Matrix3d current() const { return fundamental(R, t); }
+    void derivatives(Eigen::Matrix3d dF[kDof]) const
+    {
+        MotionTangent(R, t).essentialDerivatives(dF);
+        for (int k = 0; k < kDof; ++k)
+            dF[k] = Kinv.transpose() * dF[k] * Kinv;
+    }
+    Eigen::Matrix3d propose(const Eigen::Matrix<double, kDof, 1>& delta)
+    {
+        MotionTangent(R, t).apply(delta, pendingR, pendingT);
+        return fundamental(pendingR, pendingT);
+    }
+    void accept()
+    {
+        R = pendingR;
+        t = pendingT;
+    }
+};
+
+// The uncalibrated problem: the state is a rank-2 F in Hartley-normalized coordinates,
+// F = T2^T Fn T1; in pixels the entries of F differ by orders of magnitude and the steps would
+// be badly conditioned. The cost stays the pixel Sampson distance.
+struct FundamentalProblem
+{
+    static constexpr int kDof = FundamentalTangent::kDof;
+    Eigen::Matrix3d T1, T2;
+    Eigen::Matrix3d Fn;
+    Eigen::Matrix3d pendingFn;
+
+    Eigen::Matrix3d toPixels(const Eigen::Matrix3d& normalized) const
+    {
+        return T2.transpose() * normalized * T1;
+    }
+    Eigen::Matrix3d current() const { return toPixels(Fn); }
+    void derivatives(Eigen::Matrix3d dF[kDof]) const
+    {
+        FundamentalTangent(Fn).derivatives(dF);
+        for (int k = 0; k < kDof; ++k)
+            dF[k] = toPixels(dF[k]);
+    }
+    Eigen::Matrix3d propose(const Eigen::Matrix<double, kDof, 1>& delta)
+    {
+        pendingFn = FundamentalTangent(Fn).apply(delta);
+        return toPixels(pendingFn);
+    }
+    void accept() { Fn = FundamentalTangent(pendingFn).compose(); }
+};
+
+double sampsonCost(const TwoViewData& data, const std::vector<int>& inliers,
+                   const Eigen::Matrix3d& F)
+{
+    double cost = 0;
+    for (int i : inliers)
+        cost += sampsonDistanceSquared(F, data.points1[static_cast<size_t>(i)],
+                                       data.points2[static_cast<size_t>(i)]);
+    return cost;
+}
+
+// Gauss-Newton system J^T J, J^T r of the Sampson distances at the problem's current state.
+template <class Problem>
+void normalEquations(const TwoViewData& data, const std::vector<int>& inliers,
+                     const Problem& problem,
+                     Eigen::Matrix<double, Problem::kDof, Problem::kDof>& JtJ,
+                     Eigen::Matrix<double, Problem::kDof, 1>& Jtr)
+{
+    constexpr int P = Problem::kDof;
+    const Eigen::Matrix3d F = problem.current();
+    Eigen::Matrix3d dF[P];
+    problem.derivatives(dF);
+    JtJ.setZero();
+    Jtr.setZero();
+    Eigen::Matrix<double, 1, P> g;
+    double d = 0;
+    for (int i : inliers) {
+        if (!sampsonDistanceAndGradient<P>(F, dF, data.points1[static_cast<size_t>(i)],
+                                           data.points2[static_cast<size_t>(i)], d, g))
+            continue;
+        JtJ.noalias() += g.transpose() * g;
+        Jtr.noalias() += g.transpose() * d;
+    }
+}
+
+// Levenberg-Marquardt with multiplicative damping on the diagonal. Returns the final cost.
+template <class Problem>
+double levenbergMarquardt(const TwoViewData& data, const std::vector<int>& inliers,
+                          Problem& problem, int maxIterations)
+{
+    constexpr int P = Problem::kDof;
+    double cost = sampsonCost(data, inliers, problem.current());
+    double damping = 1e-3;
+    Eigen::Matrix<double, P, P> JtJ;
+    Eigen::Matrix<double, P, 1> Jtr;
+    for (int iteration = 0; iteration < maxIterations; ++iteration) {
+        normalEquations(data, inliers, problem, JtJ, Jtr);
+        bool improved = false;
+        while (damping < 1e12) {
+            Eigen::Matrix<double, P, P> A = JtJ;
+            A.diagonal() *= 1.0 + damping;
+            const Eigen::Matrix<double, P, 1> delta = A.ldlt().solve(-Jtr);
+            if (!delta.allFinite())
+                break;
+            const double candidateCost = sampsonCost(data, inliers, problem.propose(delta));
+            if (candidateCost < cost) {
+                problem.accept();
+                improved = cost - candidateCost > 1e-12 * cost;
+                cost = candidateCost;
+                damping = std::max(1e-9, damping * 0.1);
+                break;
+            }
+            damping *= 10;
+        }
+        if (!improved)
+            break;
+    }
+    return cost;
+}
+
+class GoldStandardRefiner final : public Refiner
+{
+public:
+    explicit GoldStandardRefiner(int maxIterations) : maxIterations_(maxIterations) {}
+
+    bool refine(const TwoViewData& data, const std::vector<uchar>& mask, Model& model) override
+    {
+        std::vector<int> inliers;
+        for (size_t i = 0; i < mask.size(); ++i)
+            if (mask[i])
+                inliers.push_back(static_cast<int>(i));
+        if (data.calibrated)
+            return refineMotion(data, mask, inliers, model);
+        // A 7-DoF F needs more than 7 constraints to be refined at all.
+        if (inliers.size() <= FundamentalProblem::kDof)
+            return false;
+        FundamentalProblem problem;
+        if (!normalizingTransform(data.points1, inliers, problem.T1) ||
+            !normalizingTransform(data.points2, inliers, problem.T2))
+            return false;
+        problem.Fn =
+            FundamentalTangent(problem.T2.transpose().inverse() * model.F * problem.T1.inverse())
+                .compose();
+        levenbergMarquardt(data, inliers, problem, maxIterations_);
+        model.F = normalizeFundamental(problem.current());
+        return model.F.allFinite();
+    }
+
+private:
+    bool refineMotion(const TwoViewData& data, const std::vector<uchar>& mask,
+                      const std::vector<int>& inliers, Model& model) const
+    {
+        if (inliers.size() <= MotionProblem::kDof)
+            return false;
+        if (!model.hasMotion) {
+            if (recoverMotionFromEssential(model.E, data.points1, data.points2, data.Kinv, &mask,
+                                           model.R, model.t) <= 0)
+                return false;
+            model.hasMotion = true;
+        }
+        MotionProblem problem{data.Kinv, model.R, model.t, model.R, model.t};
+        levenbergMarquardt(data, inliers, problem, maxIterations_);
+        model.R = problem.R;
+        model.t = problem.t;
+        model.E = skew(model.t) * model.R;
+        model.F = fundamentalFromEssential(model.E, data.Kinv);
+
+        Eigen::Matrix<double, 5, 5> JtJ;
+        Eigen::Matrix<double, 5, 1> Jtr;
+        normalEquations(data, inliers, problem, JtJ, Jtr);
+        const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 5, 5>> eig(JtJ);
+        model.hasCovariance = eig.eigenvalues()(0) > 1e-12 * eig.eigenvalues()(4);
+        if (model.hasCovariance)
+            model.covariance = data.sigma * data.sigma * JtJ.inverse();
+        return model.F.allFinite();
+    }
+
+    int maxIterations_;
+};
+
+} // namespace
+
+std::unique_ptr<Refiner> createGoldStandardRefiner(int maxIterations)
+{
+    return std::make_unique<GoldStandardRefiner>(maxIterations);
+}
+
+} // namespace detail
+} // namespace rcme
+} // namespace cv

@@ -1,0 +1,138 @@
+// This file is part of the rcme module. It is subject to the license terms in the LICENSE file
+// found in the top-level directory of this distribution.
+
+#ifndef OPENCV_RCME_FRAMEWORK_COMPONENTS_HPP
+#define OPENCV_RCME_FRAMEWORK_COMPONENTS_HPP
+
+// The component interfaces of rcme's RANSAC, shaped like OpenCV's USAC (calib3d/src/usac.hpp),
+// which is private to calib3d and cannot be extended from outside. A method is a choice of one
+// implementation per interface, assembled by estimator_factory.cpp and run by ransac_loop.cpp;
+// each implementation lives in its own file under components/.
+
+#include "framework/two_view_data.hpp"
+
+namespace cv {
+namespace rcme {
+namespace detail {
+
+//! One hypothesis (and, after selection, the estimate).
+struct Model
+{
+    Eigen::Matrix3d F = Eigen::Matrix3d::Zero(); //!< pixel fundamental matrix, ||F|| = 1
+    //! Set when the data is calibrated: E = [t]x R, and F = K^-T E K^-1 (up to scale).
+    Eigen::Matrix3d E = Eigen::Matrix3d::Zero();
+    //! Motion, valid when hasMotion: x2 = R x1 + t, |t| = 1.
+    bool hasMotion = false;
+    Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
+    Eigen::Vector3d t = Eigen::Vector3d::Zero();
+    //! 5x5 covariance of the motion in its tangent space, valid when hasCovariance.
+    bool hasCovariance = false;
+    Eigen::Matrix<double, 5, 5> covariance = Eigen::Matrix<double, 5, 5>::Zero();
+};
+
+//! Quality of a hypothesis as a scorer sees it; lower value is better.
+struct Score
+{
+    double value = std::numeric_limits<double>::infinity();
+    int inlierCount = 0;
+    double meanEntropy = std::numeric_limits<double>::quiet_NaN();
+    //! Whether the hypothesis passed the method's acceptance tests (may become the estimate).
+    bool isCandidate = false;
+
+    bool isBetterThan(const Score& other) const { return value < other.value; }
+};
+
+//! Draws minimal samples. Sample j depends only on (seed, j), so runs are reproducible and
+//! iterations can be evaluated in any order.
+class Sampler
+{
+public:
+    virtual ~Sampler() = default;
+    //! Fills `sample` (size = sample size) with distinct indices for iteration `iteration`.
+    virtual void generateSample(int iteration, std::vector<int>& sample) = 0;
+};
+
+//! Instantiates hypotheses from a minimal sample.
+class MinimalSolver
+{
+public:
+    virtual ~MinimalSolver() = default;
+    virtual int sampleSize() const = 0;
+    virtual int maxSolutions() const = 0;
+    //! More parameters than the model has degrees of freedom (the paper's consistency test
+    //! applies only then).
+    virtual bool isOverParameterized() const = 0;
+    //! Appends the hypotheses of `sample` to `models` (cleared first); returns how many. Zero
+    //! means the sample is degenerate.
+    virtual int estimate(const TwoViewData& data, const std::vector<int>& sample,
+                         std::vector<Model>& models) = 0;
+};
+
+//! Tests a hypothesis before it is scored (model-sample consistency, SPRT, ...).
+class ModelVerifier
+{
+public:
+    virtual ~ModelVerifier() = default;
+    //! May complete the model (e.g. its covariance). False drops it.
+    virtual bool isModelGood(const TwoViewData& data, const std::vector<int>& sample,
+                             Model& model) = 0;
+};
+
+//! Scores hypotheses and classifies points.
+class Scorer
+{
+public:
+    virtual ~Scorer() = default;
+    virtual Score score(const TwoViewData& data, const Model& model) = 0;
+    //! Writes 1 for the inliers of `model`, 0 otherwise; `mask` is resized to data.size().
+    virtual void classify(const TwoViewData& data, const Model& model,
+                          std::vector<uchar>& mask) = 0;
+};
+
+//! Decides how many iterations to run.
+class Termination
+{
+public:
+    virtual ~Termination() = default;
+    //! Iterations to run given what has been seen so far.
+    virtual int iterationBound() const = 0;
+    //! Called each time a new best candidate is found.
+    virtual void update(const Score& best, int pointCount) = 0;
+};
+
+//! Refines the selected hypothesis on its inliers.
+class Refiner
+{
+public:
+    virtual ~Refiner() = default;
+    //! Returns false (model untouched) when refinement is not possible.
+    virtual bool refine(const TwoViewData& data, const std::vector<uchar>& inliers,
+                        Model& model) = 0;
+};
+
+//! A method: one component of each kind.
+struct EstimatorComponents
+{
+    std::unique_ptr<Sampler> sampler;
+    std::unique_ptr<MinimalSolver> solver;
+    std::vector<std::unique_ptr<ModelVerifier>> verifiers; //!< applied in order, may be empty
+    std::unique_ptr<Scorer> scorer;
+    std::unique_ptr<Termination> termination;
+    std::unique_ptr<Refiner> refiner; //!< null when refinement is off
+};
+
+// Factories of the component implementations, one file each under components/.
+std::unique_ptr<Sampler> createUniformSampler(int pointCount, int sampleSize, uint64_t seed);
+std::unique_ptr<MinimalSolver> createEightPointSolver();
+std::unique_ptr<Scorer> createInlierCountScorer(const TwoViewData& data, int sampleSize,
+                                                int maxIterations);
+std::unique_ptr<Termination> createAdaptiveTermination(double confidence, int maxIterations,
+                                                       int sampleSize);
+std::unique_ptr<Termination> createExactTermination(int iterations);
+std::unique_ptr<Refiner> createGoldStandardRefiner(int maxIterations);
+
+} // namespace detail
+} // namespace rcme
+} // namespace cv
+
+#endif // OPENCV_RCME_FRAMEWORK_COMPONENTS_HPP

@@ -1,0 +1,101 @@
+// This file is part of the rcme module. It is subject to the license terms in the LICENSE file
+// found in the top-level directory of this distribution.
+
+#include "framework/ransac_loop.hpp"
+
+namespace cv {
+namespace rcme {
+namespace detail {
+
+namespace {
+
+bool passesVerifiers(EstimatorComponents& c, const TwoViewData& data,
+                     const std::vector<int>& sample, Model& model)
+{
+    for (auto& verifier : c.verifiers)
+        if (!verifier->isModelGood(data, sample, model))
+            return false;
+    return true;
+}
+
+// Refines the selected model; keeps the refinement only if the scorer still accepts it and
+// likes it at least as much, so a diverging refinement cannot spoil a good estimate.
+void refineSelected(const TwoViewData& data, EstimatorComponents& c, RansacResult& result)
+{
+    if (!c.refiner)
+        return;
+    Model refined = result.model;
+    if (!c.refiner->refine(data, result.mask, refined))
+        return;
+    const Score refinedScore = c.scorer->score(data, refined);
+    if (!refinedScore.isCandidate || result.score.isBetterThan(refinedScore))
+        return;
+    result.model = refined;
+    result.score = refinedScore;
+    c.scorer->classify(data, result.model, result.mask);
+}
+
+} // namespace
+
+RansacResult runRansac(const TwoViewData& data, EstimatorComponents& c)
+{
+    RansacResult result;
+    const int n = data.size();
+    result.mask.assign(static_cast<size_t>(n), 0);
+    const int m = c.solver->sampleSize();
+    if (n < m) {
+        result.status = STATUS_NOT_ENOUGH_POINTS;
+        result.message = cv::format("%d correspondences, the minimal solver needs %d", n, m);
+        return result;
+    }
+
+    std::vector<int> sample(static_cast<size_t>(m));
+    std::vector<Model> models;
+    models.reserve(static_cast<size_t>(c.solver->maxSolutions()));
+    bool haveCandidate = false;
+    int iteration = 0;
+    for (; iteration < c.termination->iterationBound(); ++iteration) {
+        c.sampler->generateSample(iteration, sample);
+        if (c.solver->estimate(data, sample, models) == 0) {
+            ++result.degenerateSamples;
+            continue;
+        }
+        for (Model& model : models) {
+            if (!passesVerifiers(c, data, sample, model))
+                continue;
+            const Score score = c.scorer->score(data, model);
+            if (!score.isCandidate)
+                continue;
+            // Strictly better only: ties keep the earliest hypothesis, which makes the result
+            // independent of how iterations are scheduled.
+            if (!haveCandidate || score.isBetterThan(result.score)) {
+                haveCandidate = true;
+                result.model = model;
+                result.score = score;
+                c.termination->update(score, n);
+            }
+        }
+    }
+    result.iterations = iteration;
+
+    if (!haveCandidate) {
+        if (result.degenerateSamples == iteration) {
+            result.status = STATUS_DEGENERATE_CONFIGURATION;
+            result.message = "every minimal sample was degenerate (identical or collinear points)";
+        } else {
+            result.status = STATUS_POOR_QUALITY_INPUT;
+            result.message =
+                cv::format("no hypothesis passed the acceptance tests in %d iterations", iteration);
+        }
+        return result;
+    }
+
+    c.scorer->classify(data, result.model, result.mask);
+    refineSelected(data, c, result);
+    result.status = STATUS_SUCCESS;
+    return result;
+}
+
+} // namespace detail
+} // namespace rcme
+} // namespace cv

@@ -1,0 +1,36 @@
+// This file is part of the rcme module. It is subject to the license terms in the LICENSE file
+// found in the top-level directory of this distribution.
+
+#ifndef OPENCV_RCME_FRAMEWORK_RANSAC_LOOP_HPP
+#define OPENCV_RCME_FRAMEWORK_RANSAC_LOOP_HPP
+
+#include "framework/components.hpp"
+
+#include <string>
+
+namespace cv {
+namespace rcme {
+namespace detail {
+
+//! What one run of the loop produced.
+struct RansacResult
+{
+    Status status = STATUS_POOR_QUALITY_INPUT;
+    std::string message;
+    Model model;             //!< valid only on success
+    Score score;             //!< of the returned model
+    std::vector<uchar> mask; //!< inliers of the returned model, always data.size()
+    int iterations = 0;
+    int degenerateSamples = 0;
+};
+
+/** The RANSAC loop shared by every method: sample, instantiate, verify, score, keep the best
+candidate, adapt the iteration bound; then refine the selected model and classify the points.
+No hypothesis that is not a candidate is ever returned: with none, the status says why. */
+RansacResult runRansac(const TwoViewData& data, EstimatorComponents& components);
+
+} // namespace detail
+} // namespace rcme
+} // namespace cv
+
+#endif // OPENCV_RCME_FRAMEWORK_RANSAC_LOOP_HPP

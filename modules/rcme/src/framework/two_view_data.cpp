@@ -1,0 +1,188 @@
+// This file is part of the rcme module. It is subject to the license terms in the LICENSE file
+// found in the top-level directory of this distribution.
+
+// Input checking: every malformed argument is reported by name before any estimation starts.
+
+#include "framework/two_view_data.hpp"
+
+namespace cv {
+namespace rcme {
+namespace detail {
+
+namespace {
+
+// Above this many iterations a call could run for hours; a bound keeps "never a hang" true.
+constexpr int kMaxIterationsLimit = 10000000;
+
+template <typename T>
+void appendPoints(const Mat& m, int count, std::vector<Eigen::Vector2d>& out, const char* argName)
+{
+    const Mat flat = m.isContinuous() ? m : m.clone();
+    const T* data = flat.ptr<T>();
+    out.resize(static_cast<size_t>(count));
+    for (int i = 0; i < count; ++i) {
+        const double x = static_cast<double>(data[2 * i]);
+        const double y = static_cast<double>(data[2 * i + 1]);
+        if (!std::isfinite(x) || !std::isfinite(y))
+            CV_Error(Error::StsBadArg,
+                     cv::format("%s: point %d has a non-finite coordinate", argName, i));
+        out[static_cast<size_t>(i)] = Eigen::Vector2d(x, y);
+    }
+}
+
+void checkRange(bool ok, const char* message)
+{
+    if (!ok)
+        CV_Error(Error::StsBadArg, message);
+}
+
+} // namespace
+
+std::vector<Eigen::Vector2d> readPoints(InputArray points, const char* argName)
+{
+    if (points.empty())
+        CV_Error(Error::StsBadArg, cv::format("%s is empty", argName));
+    const Mat m = points.getMat();
+    const int count = m.checkVector(2);
+    if (count <= 0)
+        CV_Error(Error::StsBadArg,
+                 cv::format("%s must be Nx2 (1 channel), Nx1 or 1xN (2 channels), got %dx%d with "
+                            "%d channels",
+                            argName, m.rows, m.cols, m.channels()));
+    std::vector<Eigen::Vector2d> out;
+    switch (m.depth()) {
+    case CV_32F:
+        appendPoints<float>(m, count, out, argName);
+        break;
+    case CV_64F:
+        appendPoints<double>(m, count, out, argName);
+        break;
+    case CV_32S:
+        appendPoints<int>(m, count, out, argName);
+        break;
+    default:
+        CV_Error(Error::StsBadArg,
+                 cv::format("%s must have depth CV_32F, CV_64F or CV_32S", argName));
+    }
+    return out;
+}
+
+bool readCameraMatrix(InputArray cameraMatrix, const char* argName, Eigen::Matrix3d& K)
+{
+    if (cameraMatrix.empty())
+        return false;
+    const Mat m = cameraMatrix.getMat();
+    if (m.rows != 3 || m.cols != 3 || m.channels() != 1)
+        CV_Error(Error::StsBadArg, cv::format("%s must be 3x3 with one channel, got %dx%d with %d "
+                                              "channels",
+                                              argName, m.rows, m.cols, m.channels()));
+    if (m.depth() != CV_32F && m.depth() != CV_64F)
+        CV_Error(Error::StsBadArg, cv::format("%s must have depth CV_32F or CV_64F", argName));
+    Mat k64;
+    m.convertTo(k64, CV_64F);
+    for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c)
+            K(r, c) = k64.at<double>(r, c);
+    if (!K.allFinite())
+        CV_Error(Error::StsBadArg, cv::format("%s has a non-finite entry", argName));
+    if (K(2, 0) != 0 || K(2, 1) != 0 || K(2, 2) == 0)
+        CV_Error(Error::StsBadArg,
+                 cv::format("%s must have last row (0, 0, k) with k != 0", argName));
+    K /= K(2, 2);
+    if (!(std::abs(K.determinant()) > 1e-12 * std::pow(K.topLeftCorner<2, 2>().norm(), 2)) ||
+        K(0, 0) == 0 || K(1, 1) == 0)
+        CV_Error(Error::StsBadArg, cv::format("%s is singular (zero focal length)", argName));
+    return true;
+}
+
+Eigen::Matrix3d cameraMatrixFromFocal(double focal, Point2d pp)
+{
+    if (!std::isfinite(focal) || focal <= 0)
+        CV_Error(Error::StsBadArg, "focal must be a positive finite number");
+    if (!std::isfinite(pp.x) || !std::isfinite(pp.y))
+        CV_Error(Error::StsBadArg, "pp must be finite");
+    Eigen::Matrix3d K;
+    K << focal, 0, pp.x, 0, focal, pp.y, 0, 0, 1;
+    return K;
+}
+
+void validateParams(const Params& p)
+{
+    switch (p.method) {
+    case METHOD_STANDARD:
+        break;
+    case METHOD_RCME:
+    case METHOD_PRCME:
+    case METHOD_MLESAC:
+    case METHOD_COV_RANSAC:
+        CV_Error(Error::StsNotImplemented,
+                 "Params.method: this method is not implemented yet; use METHOD_STANDARD");
+    default:
+        CV_Error(Error::StsBadArg,
+                 cv::format("Params.method: unknown value %d", static_cast<int>(p.method)));
+    }
+    if (p.sampler == SAMPLER_PROSAC)
+        CV_Error(Error::StsNotImplemented, "Params.sampler: PROSAC is not implemented yet");
+    else if (p.sampler != SAMPLER_UNIFORM)
+        CV_Error(Error::StsBadArg,
+                 cv::format("Params.sampler: unknown value %d", static_cast<int>(p.sampler)));
+    if (p.solver == SOLVER_SEVEN_POINT || p.solver == SOLVER_FIVE_POINT)
+        CV_Error(Error::StsNotImplemented,
+                 "Params.solver: only SOLVER_EIGHT_POINT is implemented yet");
+    else if (p.solver != SOLVER_EIGHT_POINT)
+        CV_Error(Error::StsBadArg,
+                 cv::format("Params.solver: unknown value %d", static_cast<int>(p.solver)));
+    checkRange(std::isfinite(p.sigma) && p.sigma > 0, "Params.sigma must be positive and finite");
+    checkRange(std::isfinite(p.threshold), "Params.threshold must be finite (<= 0: from sigma)");
+    checkRange(p.confidence > 0 && p.confidence < 1, "Params.confidence must be in (0, 1)");
+    checkRange(p.maxIterations >= 1 && p.maxIterations <= kMaxIterationsLimit,
+               "Params.maxIterations must be in [1, 10000000]");
+    checkRange(p.refineIterations >= 0 && p.refineIterations <= 1000,
+               "Params.refineIterations must be in [0, 1000]");
+    checkRange(p.alpha > 0 && p.alpha < 1, "Params.alpha must be in (0, 1)");
+    checkRange(std::isfinite(p.entropyThreshold), "Params.entropyThreshold must be finite");
+    checkRange(p.inlierRatioFactor > 0 && p.inlierRatioFactor <= 1,
+               "Params.inlierRatioFactor must be in (0, 1]");
+    checkRange(p.priorInlierRatio <= 1 && !std::isnan(p.priorInlierRatio),
+               "Params.priorInlierRatio must be <= 1 (<= 0: estimated)");
+    checkRange(p.consistencyDof >= 1 && p.consistencyDof <= 4,
+               "Params.consistencyDof must be in [1, 4]");
+}
+
+double inlierThreshold(const Params& params)
+{
+    // sqrt of the 95 % quantile of chi-square with 1 DoF: the Sampson distance of an inlier is
+    // one-dimensional Gaussian noise with standard deviation sigma.
+    constexpr double kChi2OneDof95Sqrt = 1.959963984540054;
+    return params.threshold > 0 ? params.threshold : kChi2OneDof95Sqrt * params.sigma;
+}
+
+TwoViewData makeTwoViewData(InputArray points1, InputArray points2, InputArray cameraMatrix,
+                            const Params& params)
+{
+    validateParams(params);
+    TwoViewData data;
+    data.points1 = readPoints(points1, "points1");
+    data.points2 = readPoints(points2, "points2");
+    if (data.points1.size() != data.points2.size())
+        CV_Error(Error::StsUnmatchedSizes,
+                 cv::format("points1 and points2 must hold the same number of points (%d vs %d)",
+                            static_cast<int>(data.points1.size()),
+                            static_cast<int>(data.points2.size())));
+    data.calibrated = readCameraMatrix(cameraMatrix, "cameraMatrix", data.K);
+    data.Kinv = data.K.inverse();
+    data.sigma = params.sigma;
+    data.threshold = inlierThreshold(params);
+    return data;
+}
+
+void writeMask(const std::vector<uchar>& mask, OutputArray out)
+{
+    if (!out.needed())
+        return;
+    Mat(static_cast<int>(mask.size()), 1, CV_8U, const_cast<uchar*>(mask.data())).copyTo(out);
+}
+
+} // namespace detail
+} // namespace rcme
+} // namespace cv

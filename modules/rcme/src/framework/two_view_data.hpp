@@ -1,0 +1,57 @@
+// This file is part of the rcme module. It is subject to the license terms in the LICENSE file
+// found in the top-level directory of this distribution.
+
+#ifndef OPENCV_RCME_FRAMEWORK_TWO_VIEW_DATA_HPP
+#define OPENCV_RCME_FRAMEWORK_TWO_VIEW_DATA_HPP
+
+#include "precomp.hpp"
+
+namespace cv {
+namespace rcme {
+namespace detail {
+
+//! The estimation problem: validated correspondences in pixels and, when calibrated, K.
+struct TwoViewData
+{
+    std::vector<Eigen::Vector2d> points1;
+    std::vector<Eigen::Vector2d> points2;
+    bool calibrated = false;
+    Eigen::Matrix3d K = Eigen::Matrix3d::Identity();
+    Eigen::Matrix3d Kinv = Eigen::Matrix3d::Identity();
+    double sigma = 1.0;     //!< noise per pixel coordinate
+    double threshold = 0.0; //!< inlier threshold on the Sampson distance, pixels
+
+    int size() const { return static_cast<int>(points1.size()); }
+};
+
+/** Reads one point set as OpenCV accepts it (Nx2 1-channel, Nx1 or 1xN 2-channel; CV_32S,
+CV_32F or CV_64F; std::vector<Point2f/2d>). Throws StsBadArg naming `argName` when the layout is
+wrong, the set is empty, or a coordinate is not finite. */
+std::vector<Eigen::Vector2d> readPoints(InputArray points, const char* argName);
+
+/** Reads an intrinsic matrix; returns false when `cameraMatrix` is empty (uncalibrated). Throws
+StsBadArg naming `argName` unless it is a finite, invertible 3x3 upper-triangular-like matrix
+with last row (0, 0, k) and k != 0 (the matrix is divided by k). */
+bool readCameraMatrix(InputArray cameraMatrix, const char* argName, Eigen::Matrix3d& K);
+
+//! Builds K from OpenCV's focal length / principal point form; throws naming "focal" or "pp".
+Eigen::Matrix3d cameraMatrixFromFocal(double focal, Point2d pp);
+
+//! Checks every field of `params`, throwing StsBadArg (or StsNotImplemented) naming it.
+void validateParams(const Params& params);
+
+//! Validates and assembles the problem; throws as readPoints/readCameraMatrix/validateParams.
+TwoViewData makeTwoViewData(InputArray points1, InputArray points2, InputArray cameraMatrix,
+                            const Params& params);
+
+//! The inlier threshold in pixels: Params::threshold, or 1.96 sigma when that is <= 0.
+double inlierThreshold(const Params& params);
+
+//! Writes an Nx1 CV_8U mask (the only mask layout rcme produces).
+void writeMask(const std::vector<uchar>& mask, OutputArray out);
+
+} // namespace detail
+} // namespace rcme
+} // namespace cv
+
+#endif // OPENCV_RCME_FRAMEWORK_TWO_VIEW_DATA_HPP

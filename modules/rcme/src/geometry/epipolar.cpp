@@ -1,0 +1,130 @@
+// This file is part of the rcme module. It is subject to the license terms in the LICENSE file
+// found in the top-level directory of this distribution.
+
+#include "geometry/epipolar.hpp"
+
+namespace cv {
+namespace rcme {
+namespace detail {
+
+bool normalizingTransform(const std::vector<Eigen::Vector2d>& points,
+                          const std::vector<int>& indices, Eigen::Matrix3d& T)
+{
+    Eigen::Vector2d centroid = Eigen::Vector2d::Zero();
+    for (int i : indices)
+        centroid += points[static_cast<size_t>(i)];
+    centroid /= static_cast<double>(indices.size());
+    double meanDistance = 0;
+    for (int i : indices)
+        meanDistance += (points[static_cast<size_t>(i)] - centroid).norm();
+    meanDistance /= static_cast<double>(indices.size());
+    if (!(meanDistance > 1e-9 * (1.0 + centroid.norm())))
+        return false;
+    const double scale = std::sqrt(2.0) / meanDistance;
+    T << scale, 0, -scale * centroid.x(), 0, scale, -scale * centroid.y(), 0, 0, 1;
+    return true;
+}
+
+Eigen::Matrix3d normalizeFundamental(const Eigen::Matrix3d& F)
+{
+    const double norm = F.norm();
+    if (!(norm > 0))
+        return F;
+    Eigen::Index row = 0, col = 0;
+    F.cwiseAbs().maxCoeff(&row, &col);
+    return (F(row, col) < 0 ? -1.0 : 1.0) / norm * F;
+}
+
+Eigen::Matrix3d projectToEssential(const Eigen::Matrix3d& E)
+{
+    Eigen::JacobiSVD<Eigen::Matrix3d> svd(E, Eigen::ComputeFullU | Eigen::ComputeFullV);
+    return svd.matrixU() * Eigen::Vector3d(1, 1, 0).asDiagonal() * svd.matrixV().transpose();
+}
+
+Eigen::Matrix3d fundamentalFromEssential(const Eigen::Matrix3d& E, const Eigen::Matrix3d& Kinv)
+{
+    return normalizeFundamental(Kinv.transpose() * E * Kinv);
+}
+
+namespace {
+
+// Depths (in camera 1 and camera 2) of the point seen along rays y1, y2 under x2 = R x1 + t,
+// by least squares on lambda2 y2 = lambda1 R y1 + t. False for (near) parallel rays.
+bool triangulateDepths(const Eigen::Matrix3d& R, const Eigen::Vector3d& t,
+                       const Eigen::Vector3d& y1, const Eigen::Vector3d& y2, double& depth1,
+                       double& depth2)
+{
+    const Eigen::Vector3d a = R * y1;
+    // Solve [a, -y2] [l1; l2] = -t in the least-squares sense.
+    const double aa = a.dot(a), ab = -a.dot(y2), bb = y2.dot(y2);
+    const double det = aa * bb - ab * ab;
+    if (!(det > 1e-12 * aa * bb))
+        return false;
+    const double ra = -a.dot(t), rb = y2.dot(t);
+    const double l1 = (bb * ra - ab * rb) / det;
+    depth1 = l1 * y1.z();
+    depth2 = (R * (l1 * y1) + t).z();
+    return true;
+}
+
+} // namespace
+
+int countPointsInFront(const Eigen::Matrix3d& R, const Eigen::Vector3d& t,
+                       const std::vector<Eigen::Vector2d>& points1,
+                       const std::vector<Eigen::Vector2d>& points2, const Eigen::Matrix3d& Kinv,
+                       const std::vector<uchar>* selection, std::vector<uchar>* inFront,
+                       double distanceThreshold)
+{
+    const size_t n = points1.size();
+    if (inFront)
+        inFront->assign(n, 0);
+    int count = 0;
+    for (size_t i = 0; i < n; ++i) {
+        if (selection && !(*selection)[i])
+            continue;
+        double d1 = 0, d2 = 0;
+        if (triangulateDepths(R, t, Kinv * homogeneous(points1[i]), Kinv * homogeneous(points2[i]),
+                              d1, d2) &&
+            d1 > 0 && d2 > 0 && d1 < distanceThreshold && d2 < distanceThreshold) {
+            ++count;
+            if (inFront)
+                (*inFront)[i] = 1;
+        }
+    }
+    return count;
+}
+
+int recoverMotionFromEssential(const Eigen::Matrix3d& E,
+                               const std::vector<Eigen::Vector2d>& points1,
+                               const std::vector<Eigen::Vector2d>& points2,
+                               const Eigen::Matrix3d& Kinv, const std::vector<uchar>* selection,
+                               Eigen::Matrix3d& R, Eigen::Vector3d& t, double distanceThreshold)
+{
+    Eigen::JacobiSVD<Eigen::Matrix3d> svd(E, Eigen::ComputeFullU | Eigen::ComputeFullV);
+    Eigen::Matrix3d U = svd.matrixU(), V = svd.matrixV();
+    if (U.determinant() < 0)
+        U = -U;
+    if (V.determinant() < 0)
+        V = -V;
+    Eigen::Matrix3d W;
+    W << 0, -1, 0, 1, 0, 0, 0, 0, 1;
+    const Eigen::Matrix3d rotations[2] = {U * W * V.transpose(), U * W.transpose() * V.transpose()};
+    const Eigen::Vector3d direction = U.col(2).normalized();
+    int bestCount = -1;
+    for (int candidate = 0; candidate < 4; ++candidate) {
+        const Eigen::Matrix3d& Rc = rotations[candidate / 2];
+        const Eigen::Vector3d tc = (candidate % 2 == 0) ? direction : Eigen::Vector3d(-direction);
+        const int count = countPointsInFront(Rc, tc, points1, points2, Kinv, selection, nullptr,
+                                             distanceThreshold);
+        if (count > bestCount) {
+            bestCount = count;
+            R = Rc;
+            t = tc;
+        }
+    }
+    return bestCount;
+}
+
+} // namespace detail
+} // namespace rcme
+} // namespace cv

@@ -1,0 +1,102 @@
+// This file is part of the rcme module. It is subject to the license terms in the LICENSE file
+// found in the top-level directory of this distribution.
+
+#ifndef OPENCV_RCME_GEOMETRY_EPIPOLAR_HPP
+#define OPENCV_RCME_GEOMETRY_EPIPOLAR_HPP
+
+#include "precomp.hpp"
+
+namespace cv {
+namespace rcme {
+namespace detail {
+
+inline Eigen::Matrix3d skew(const Eigen::Vector3d& v)
+{
+    Eigen::Matrix3d S;
+    S << 0, -v.z(), v.y(), v.z(), 0, -v.x(), -v.y(), v.x(), 0;
+    return S;
+}
+
+inline Eigen::Vector3d homogeneous(const Eigen::Vector2d& x)
+{
+    return {x.x(), x.y(), 1.0};
+}
+
+/** Squared Sampson distance of x1 <-> x2 to the epipolar geometry F, in pixels^2: the first-order
+distance (x2^T F x1)^2 / |J|^2 with J = d(x2^T F x1)/d(x1, x2). Infinite where J vanishes (a
+point at an epipole), so such points are never inliers. */
+inline double sampsonDistanceSquared(const Eigen::Matrix3d& F, const Eigen::Vector2d& x1,
+                                     const Eigen::Vector2d& x2)
+{
+    const Eigen::Vector3d Fx1 = F * homogeneous(x1);
+    const Eigen::Vector3d Ftx2 = F.transpose() * homogeneous(x2);
+    const double r = homogeneous(x2).dot(Fx1);
+    const double jj =
+        Fx1.x() * Fx1.x() + Fx1.y() * Fx1.y() + Ftx2.x() * Ftx2.x() + Ftx2.y() * Ftx2.y();
+    return jj > 0 ? r * r / jj : std::numeric_limits<double>::infinity();
+}
+
+/** Sampson distance d = r/|J| and its gradient with respect to P model parameters, given the
+derivatives dF[k] of F along them. Returns false where J vanishes. */
+template <int P>
+bool sampsonDistanceAndGradient(const Eigen::Matrix3d& F, const Eigen::Matrix3d* dF,
+                                const Eigen::Vector2d& x1, const Eigen::Vector2d& x2,
+                                double& distance, Eigen::Matrix<double, 1, P>& gradient)
+{
+    const Eigen::Vector3d p1 = homogeneous(x1), p2 = homogeneous(x2);
+    const Eigen::Vector3d Fx1 = F * p1, Ftx2 = F.transpose() * p2;
+    const double r = p2.dot(Fx1);
+    const double jj =
+        Fx1.x() * Fx1.x() + Fx1.y() * Fx1.y() + Ftx2.x() * Ftx2.x() + Ftx2.y() * Ftx2.y();
+    if (!(jj > 0))
+        return false;
+    const double norm = std::sqrt(jj);
+    distance = r / norm;
+    for (int k = 0; k < P; ++k) {
+        const Eigen::Vector3d dFx1 = dF[k] * p1, dFtx2 = dF[k].transpose() * p2;
+        const double dr = p2.dot(dFx1);
+        const double djj = 2 * (Fx1.x() * dFx1.x() + Fx1.y() * dFx1.y() + Ftx2.x() * dFtx2.x() +
+                                Ftx2.y() * dFtx2.y());
+        gradient[k] = dr / norm - r * djj / (2 * jj * norm);
+    }
+    return true;
+}
+
+/** Hartley's normalization: the similarity T moving the centroid of points[indices] to the origin
+and their mean distance to sqrt(2), so that the entries of F in normalized coordinates have
+comparable magnitudes. False when the points coincide. */
+bool normalizingTransform(const std::vector<Eigen::Vector2d>& points,
+                          const std::vector<int>& indices, Eigen::Matrix3d& T);
+
+//! Scales F to unit Frobenius norm with its largest-magnitude entry positive (a fixed sign).
+Eigen::Matrix3d normalizeFundamental(const Eigen::Matrix3d& F);
+
+//! Closest essential matrix: singular values replaced by (1, 1, 0).
+Eigen::Matrix3d projectToEssential(const Eigen::Matrix3d& E);
+
+//! F = K^-T E K^-1, normalised.
+Eigen::Matrix3d fundamentalFromEssential(const Eigen::Matrix3d& E, const Eigen::Matrix3d& Kinv);
+
+/** Counts the `selection`ed points (null: all) that triangulate in front of both cameras under
+x2 = R x1 + t, closer than `distanceThreshold` baselines (as cv::recoverPose, whose default is
+50). `inFront` (may be null) receives 1 for those points, 0 for the others. */
+int countPointsInFront(const Eigen::Matrix3d& R, const Eigen::Vector3d& t,
+                       const std::vector<Eigen::Vector2d>& points1,
+                       const std::vector<Eigen::Vector2d>& points2, const Eigen::Matrix3d& Kinv,
+                       const std::vector<uchar>* selection, std::vector<uchar>* inFront,
+                       double distanceThreshold = 50.0);
+
+/** The decomposition of E into (R, t), x2 = R x1 + t, |t| = 1, that puts the most selected points
+in front of both cameras, as cv::recoverPose chooses it. Returns that number of points. */
+int recoverMotionFromEssential(const Eigen::Matrix3d& E,
+                               const std::vector<Eigen::Vector2d>& points1,
+                               const std::vector<Eigen::Vector2d>& points2,
+                               const Eigen::Matrix3d& Kinv, const std::vector<uchar>* selection,
+                               Eigen::Matrix3d& R, Eigen::Vector3d& t,
+                               double distanceThreshold = 50.0);
+
+} // namespace detail
+} // namespace rcme
+} // namespace cv
+
+#endif // OPENCV_RCME_GEOMETRY_EPIPOLAR_HPP

@@ -1,0 +1,59 @@
+// This file is part of the rcme module. It is subject to the license terms in the LICENSE file
+// found in the top-level directory of this distribution.
+
+#include "precomp.hpp"
+
+namespace cv {
+namespace rcme {
+
+Params::Params()
+    : method(METHOD_STANDARD), sampler(SAMPLER_UNIFORM), solver(SOLVER_EIGHT_POINT), sigma(1.0),
+      threshold(0.0), confidence(0.99), maxIterations(1000), exactIterations(false),
+      randomGeneratorState(0), refine(true), refineIterations(20), alpha(0.05),
+      entropyThreshold(1.27), inlierRatioFactor(0.75), priorInlierRatio(0.0), consistencyDof(1)
+{
+}
+
+Params::Params(const UsacParams& usac) : Params()
+{
+    confidence = usac.confidence;
+    maxIterations = usac.maxIterations;
+    randomGeneratorState = usac.randomGeneratorState;
+    threshold = usac.threshold;
+    switch (usac.sampler) {
+    case SAMPLING_UNIFORM:
+        sampler = SAMPLER_UNIFORM;
+        break;
+    case SAMPLING_PROSAC:
+        sampler = SAMPLER_PROSAC;
+        break;
+    default:
+        CV_Error(Error::StsBadArg,
+                 "usacParams.sampler: only SAMPLING_UNIFORM and SAMPLING_PROSAC have a "
+                 "counterpart in rcme");
+    }
+}
+
+Report::Report()
+    : status(STATUS_POOR_QUALITY_INPUT), inlierCount(0), iterations(0),
+      meanEntropy(std::numeric_limits<double>::quiet_NaN()), timeSeconds(0)
+{
+}
+
+String statusToString(Status status)
+{
+    switch (status) {
+    case STATUS_SUCCESS:
+        return "success";
+    case STATUS_POOR_QUALITY_INPUT:
+        return "poor quality input";
+    case STATUS_NOT_ENOUGH_POINTS:
+        return "not enough points";
+    case STATUS_DEGENERATE_CONFIGURATION:
+        return "degenerate configuration";
+    }
+    return cv::format("unknown status %d", static_cast<int>(status));
+}
+
+} // namespace rcme
+} // namespace cv

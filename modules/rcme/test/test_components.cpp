@@ -1,0 +1,279 @@
+// This file is part of the rcme module. It is subject to the license terms in the LICENSE file
+// found in the top-level directory of this distribution.
+
+// The framework's components one by one. They are internal (cv::rcme::detail), so these tests
+// need the module's objects linked in, which only the standalone build does; inside an OpenCV
+// build the shared library hides them.
+
+#include "test_precomp.hpp"
+
+#ifdef RCME_STANDALONE_TESTS
+
+#include "framework/components.hpp"
+#include "geometry/epipolar.hpp"
+#include "geometry/motion_parameterization.hpp"
+
+#include <opencv2/core/eigen.hpp>
+
+namespace opencv_test {
+namespace {
+
+using namespace cv::rcme::detail;
+
+// The problem of a generated scene, inliers only (noise-free unless sigma is given).
+TwoViewData sceneData(const SyntheticScene& scene, bool calibrated, bool inliersOnly = true)
+{
+    TwoViewData data;
+    for (int i = 0; i < scene.points1.rows; ++i) {
+        if (inliersOnly && !scene.inlierMask.at<uchar>(i))
+            continue;
+        data.points1.emplace_back(scene.points1.at<double>(i, 0), scene.points1.at<double>(i, 1));
+        data.points2.emplace_back(scene.points2.at<double>(i, 0), scene.points2.at<double>(i, 1));
+    }
+    data.calibrated = calibrated;
+    if (calibrated) {
+        cv2eigen(scene.cameraMatrix, data.K);
+        data.Kinv = data.K.inverse();
+    }
+    data.sigma = 1.0;
+    data.threshold = 1.96;
+    return data;
+}
+
+SyntheticScene noiseFreeScene(int seed, double sigma = 0.0)
+{
+    SceneParams sp;
+    sp.kind = SCENE_GENERIC;
+    sp.sigma = sigma;
+    sp.inlierRatio = 1.0;
+    sp.numPoints = 100;
+    sp.seed = seed;
+    return generateScene(sp);
+}
+
+Eigen::Matrix3d trueF(const SyntheticScene& scene)
+{
+    Eigen::Matrix3d F;
+    cv2eigen(scene.F, F);
+    return normalizeFundamental(F);
+}
+
+TEST(Rcme_EightPointSolver, exact_on_noise_free_data)
+{
+    for (int seed = 0; seed < 10; ++seed) {
+        const SyntheticScene scene = noiseFreeScene(seed);
+        for (bool calibrated : {false, true}) {
+            const TwoViewData data = sceneData(scene, calibrated);
+            const std::vector<int> sample = {0, 11, 22, 33, 44, 55, 66, 77};
+            std::vector<Model> models;
+            auto solver = createEightPointSolver();
+            ASSERT_EQ(solver->estimate(data, sample, models), 1);
+            EXPECT_LT((models[0].F - trueF(scene)).norm(), 1e-6) << "seed " << seed;
+            for (size_t i = 0; i < data.points1.size(); ++i)
+                EXPECT_LT(sampsonDistanceSquared(models[0].F, data.points1[i], data.points2[i]),
+                          1e-10);
+        }
+    }
+}
+
+TEST(Rcme_EightPointSolver, rejects_degenerate_samples)
+{
+    TwoViewData data;
+    for (int i = 0; i < 8; ++i) {
+        data.points1.emplace_back(100.0, 100.0); // coincident
+        data.points2.emplace_back(10.0 * i, 5.0 * i);
+    }
+    std::vector<Model> models;
+    auto solver = createEightPointSolver();
+    const std::vector<int> sample = {0, 1, 2, 3, 4, 5, 6, 7};
+    EXPECT_EQ(solver->estimate(data, sample, models), 0);
+    for (int i = 0; i < 8; ++i) // collinear in both images
+        data.points1[static_cast<size_t>(i)] = Eigen::Vector2d(3.0 * i, 2.0 * i + 1);
+    EXPECT_EQ(solver->estimate(data, sample, models), 0);
+    EXPECT_TRUE(solver->isOverParameterized());
+}
+
+TEST(Rcme_UniformSampler, distinct_in_range_deterministic_and_uniform)
+{
+    const int n = 20, m = 8;
+    auto sampler = createUniformSampler(n, m, 123);
+    auto same = createUniformSampler(n, m, 123);
+    auto other = createUniformSampler(n, m, 124);
+    std::vector<int> counts(n, 0), a, b, c;
+    int differing = 0;
+    const int draws = 5000;
+    for (int it = 0; it < draws; ++it) {
+        sampler->generateSample(it, a);
+        same->generateSample(it, b);
+        other->generateSample(it, c);
+        ASSERT_EQ(a, b);
+        differing += a != c;
+        std::vector<int> sorted = a;
+        std::sort(sorted.begin(), sorted.end());
+        ASSERT_EQ(std::adjacent_find(sorted.begin(), sorted.end()), sorted.end());
+        for (int i : a) {
+            ASSERT_GE(i, 0);
+            ASSERT_LT(i, n);
+            ++counts[static_cast<size_t>(i)];
+        }
+    }
+    EXPECT_GT(differing, draws * 9 / 10);
+    // Each index is drawn with probability m/n: expected 2000, sd ~35.
+    for (int count : counts)
+        EXPECT_NEAR(count, draws * m / n, 200);
+    // The sample of an iteration does not depend on which iterations came before.
+    sampler->generateSample(4321, a);
+    auto fresh = createUniformSampler(n, m, 123);
+    fresh->generateSample(4321, b);
+    EXPECT_EQ(a, b);
+}
+
+TEST(Rcme_Termination, adaptive_bound_and_exact_count)
+{
+    auto adaptive = createAdaptiveTermination(0.99, 5000, 8);
+    EXPECT_EQ(adaptive->iterationBound(), 5000);
+    Score score;
+    score.inlierCount = 50; // w = 0.5: log(0.01) / log(1 - 2^-8) = 1176.6
+    adaptive->update(score, 100);
+    EXPECT_EQ(adaptive->iterationBound(), 1177);
+    score.inlierCount = 10; // a worse ratio never raises the bound
+    adaptive->update(score, 100);
+    EXPECT_EQ(adaptive->iterationBound(), 1177);
+    score.inlierCount = 100;
+    adaptive->update(score, 100);
+    EXPECT_EQ(adaptive->iterationBound(), 0);
+
+    auto exact = createExactTermination(250);
+    exact->update(score, 100);
+    EXPECT_EQ(exact->iterationBound(), 250);
+}
+
+// Central differences of the Sampson distance along each tangent direction.
+template <class ApplyF, int P>
+void expectGradientMatchesFiniteDifferences(const Eigen::Matrix3d& F, const Eigen::Matrix3d* dF,
+                                            ApplyF applyAt, const TwoViewData& data)
+{
+    for (size_t i = 0; i < data.points1.size(); i += 7) {
+        double d = 0;
+        Eigen::Matrix<double, 1, P> g;
+        ASSERT_TRUE(sampsonDistanceAndGradient<P>(F, dF, data.points1[i], data.points2[i], d, g));
+        for (int k = 0; k < P; ++k) {
+            const double h = 1e-6;
+            Eigen::Matrix<double, P, 1> step = Eigen::Matrix<double, P, 1>::Zero();
+            step(k) = h;
+            double plus = 0, minus = 0;
+            Eigen::Matrix<double, 1, P> unused;
+            const Eigen::Matrix3d Fp = applyAt(step), Fm = applyAt(-step);
+            sampsonDistanceAndGradient<P>(Fp, dF, data.points1[i], data.points2[i], plus, unused);
+            sampsonDistanceAndGradient<P>(Fm, dF, data.points1[i], data.points2[i], minus, unused);
+            const double numeric = (plus - minus) / (2 * h);
+            // Pixel-unit F makes these derivatives large (~1e6); second-order terms of the central
+            // difference leave a relative error of a few 1e-5, a wrong derivative is off by O(1).
+            EXPECT_NEAR(g(k), numeric, 2e-4 * (1 + std::abs(numeric)))
+                << "point " << i << " k " << k;
+        }
+    }
+}
+
+TEST(Rcme_Parameterization, motion_jacobian_matches_finite_differences)
+{
+    const SyntheticScene scene = noiseFreeScene(3, 1.0);
+    const TwoViewData data = sceneData(scene, true);
+    Eigen::Matrix3d R;
+    Eigen::Vector3d t;
+    cv2eigen(scene.R, R);
+    cv2eigen(scene.t, t);
+    const MotionTangent tangent(R, t);
+    Eigen::Matrix3d dE[5], dF[5];
+    tangent.essentialDerivatives(dE);
+    for (int k = 0; k < 5; ++k)
+        dF[k] = data.Kinv.transpose() * dE[k] * data.Kinv;
+    auto applyAt = [&](const Eigen::Matrix<double, 5, 1>& theta) {
+        Eigen::Matrix3d Rt;
+        Eigen::Vector3d tt;
+        tangent.apply(theta, Rt, tt);
+        return Eigen::Matrix3d(data.Kinv.transpose() * skew(tt) * Rt * data.Kinv);
+    };
+    const Eigen::Matrix3d F = applyAt(Eigen::Matrix<double, 5, 1>::Zero());
+    expectGradientMatchesFiniteDifferences<decltype(applyAt), 5>(F, dF, applyAt, data);
+}
+
+TEST(Rcme_Parameterization, fundamental_jacobian_matches_finite_differences)
+{
+    const SyntheticScene scene = noiseFreeScene(4, 1.0);
+    const TwoViewData data = sceneData(scene, false);
+    const FundamentalTangent tangent(trueF(scene));
+    EXPECT_LT((normalizeFundamental(tangent.compose()) - trueF(scene)).norm(), 1e-9);
+    Eigen::Matrix3d dF[7];
+    tangent.derivatives(dF);
+    auto applyAt = [&](const Eigen::Matrix<double, 7, 1>& theta) { return tangent.apply(theta); };
+    expectGradientMatchesFiniteDifferences<decltype(applyAt), 7>(tangent.compose(), dF, applyAt,
+                                                                 data);
+}
+
+TEST(Rcme_GoldStandardRefiner, improves_a_perturbed_estimate)
+{
+    for (bool calibrated : {false, true}) {
+        SCOPED_TRACE(calibrated ? "calibrated" : "uncalibrated");
+        const SyntheticScene scene = noiseFreeScene(5, 0.5);
+        const TwoViewData data = sceneData(scene, calibrated);
+        Eigen::Matrix3d R;
+        Eigen::Vector3d t;
+        cv2eigen(scene.R, R);
+        cv2eigen(scene.t, t);
+        Model model;
+        // Start a couple of degrees and a few degrees of heading away from the truth.
+        R = R * rotationExp(Eigen::Vector3d(0.03, -0.02, 0.01));
+        t = (t + Eigen::Vector3d(0.05, 0.05, -0.05)).normalized();
+        Eigen::Matrix3d K;
+        cv2eigen(scene.cameraMatrix, K);
+        model.E = skew(t) * R;
+        model.F = fundamentalFromEssential(model.E, K.inverse());
+        const std::vector<uchar> all(data.points1.size(), 1);
+        auto cost = [&](const Eigen::Matrix3d& F) {
+            double c = 0;
+            for (size_t i = 0; i < data.points1.size(); ++i)
+                c += sampsonDistanceSquared(F, data.points1[i], data.points2[i]);
+            return c;
+        };
+        const double before = cost(model.F);
+        auto refiner = createGoldStandardRefiner(30);
+        ASSERT_TRUE(refiner->refine(data, all, model));
+        const double after = cost(model.F);
+        EXPECT_LT(after, 0.1 * before);
+        // Near the noise floor: mean squared Sampson distance about sigma^2 = 0.25.
+        EXPECT_LT(after / data.points1.size(), 0.5);
+        EXPECT_LT((model.F - trueF(scene)).norm(), 0.02);
+        if (calibrated) {
+            EXPECT_TRUE(model.hasMotion);
+            EXPECT_TRUE(model.hasCovariance);
+        }
+    }
+}
+
+TEST(Rcme_Cheirality, picks_the_true_decomposition)
+{
+    for (int seed = 0; seed < 5; ++seed) {
+        const SyntheticScene scene = noiseFreeScene(seed);
+        const TwoViewData data = sceneData(scene, true);
+        Eigen::Matrix3d E, R;
+        Eigen::Vector3d t;
+        cv2eigen(scene.E, E);
+        for (double sign : {1.0, -1.0}) { // E and -E are the same essential matrix
+            const int count = recoverMotionFromEssential(sign * E, data.points1, data.points2,
+                                                         data.Kinv, nullptr, R, t);
+            EXPECT_EQ(count, data.size());
+            Eigen::Matrix3d Rgt;
+            Eigen::Vector3d tgt;
+            cv2eigen(scene.R, Rgt);
+            cv2eigen(scene.t, tgt);
+            EXPECT_LT((R - Rgt).norm(), 1e-9);
+            EXPECT_LT((t - tgt).norm(), 1e-9);
+        }
+    }
+}
+
+} // namespace
+} // namespace opencv_test
+
+#endif // RCME_STANDALONE_TESTS

@@ -1,0 +1,19 @@
+// This file is part of the rcme module. It is subject to the license terms in the LICENSE file
+// found in the top-level directory of this distribution.
+
+#ifndef OPENCV_RCME_TEST_PRECOMP_HPP
+#define OPENCV_RCME_TEST_PRECOMP_HPP
+
+#ifdef RCME_STANDALONE_TESTS
+#include "test_standalone_shim.hpp"
+#else
+#include "opencv2/ts.hpp"
+#endif
+
+#include "opencv2/rcme.hpp"
+
+namespace opencv_test {
+using namespace cv::rcme;
+} // namespace opencv_test
+
+#endif // OPENCV_RCME_TEST_PRECOMP_HPP

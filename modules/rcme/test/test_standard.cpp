@@ -1,0 +1,288 @@
+// This file is part of the rcme module. It is subject to the license terms in the LICENSE file
+// found in the top-level directory of this distribution.
+
+// The Standard estimator through the public API: accuracy, conventions, determinism, threads.
+
+#include "test_precomp.hpp"
+
+#include <opencv2/calib3d.hpp>
+
+#include <algorithm>
+#include <thread>
+
+namespace opencv_test {
+namespace {
+
+SyntheticScene genericScene(int seed, double inlierRatio = 0.5, int n = 500)
+{
+    SceneParams sp;
+    sp.kind = SCENE_GENERIC;
+    sp.seed = seed;
+    sp.inlierRatio = inlierRatio;
+    sp.numPoints = n;
+    return generateScene(sp);
+}
+
+Params standardParams(int seed = 0)
+{
+    Params params;
+    params.method = METHOD_STANDARD;
+    params.randomGeneratorState = seed;
+    return params;
+}
+
+double median(std::vector<double> v)
+{
+    std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+    return v[v.size() / 2];
+}
+
+TEST(Rcme_Standard, recovers_pose_on_well_conditioned_scenes)
+{
+    // Issue 2's acceptance figure: median rotation error < 0.5 deg over >= 100 seeds.
+    std::vector<double> rotationErrors, translationErrors;
+    for (int seed = 0; seed < 100; ++seed) {
+        const SyntheticScene scene = genericScene(seed);
+        Mat E, R, t, mask;
+        Status status;
+        recoverPose(scene.points1, scene.points2, scene.cameraMatrix, E, R, t, standardParams(seed),
+                    mask, status);
+        ASSERT_EQ(status, STATUS_SUCCESS) << "seed " << seed;
+        const MotionError error = compareMotion(R, t, scene.R, scene.t);
+        rotationErrors.push_back(error.rotationDeg);
+        translationErrors.push_back(error.translationDeg);
+    }
+    EXPECT_LT(median(rotationErrors), 0.5);
+    EXPECT_LT(median(translationErrors), 5.0);
+}
+
+TEST(Rcme_Standard, recover_pose_follows_opencv_conventions)
+{
+    const SyntheticScene scene = genericScene(3);
+    Mat E, R, t, mask, covariance;
+    Status status;
+    const int count = recoverPose(scene.points1, scene.points2, scene.cameraMatrix, E, R, t,
+                                  standardParams(), mask, status, covariance);
+    ASSERT_EQ(status, STATUS_SUCCESS);
+    EXPECT_EQ(R.size(), Size(3, 3));
+    EXPECT_EQ(R.type(), CV_64F);
+    EXPECT_EQ(t.size(), Size(1, 3));
+    EXPECT_NEAR(norm(t), 1.0, 1e-9);
+    EXPECT_NEAR(determinant(R), 1.0, 1e-9);
+    EXPECT_LT(norm(R.t() * R - Mat::eye(3, 3, CV_64F)), 1e-9);
+    EXPECT_EQ(mask.type(), CV_8U);
+    EXPECT_EQ(mask.rows, scene.points1.rows);
+    EXPECT_EQ(mask.cols, 1);
+    EXPECT_EQ(countNonZero(mask), count);
+    // E = [t]x R and cv::recoverPose agrees with our R, t from our E and mask.
+    Mat tx = (Mat_<double>(3, 3) << 0, -t.at<double>(2), t.at<double>(1), t.at<double>(2), 0,
+              -t.at<double>(0), -t.at<double>(1), t.at<double>(0), 0);
+    EXPECT_LT(norm(E - tx * R), 1e-9);
+    Mat Rcv, tcv, maskCv = mask.clone();
+    cv::recoverPose(E, scene.points1, scene.points2, scene.cameraMatrix, Rcv, tcv, maskCv);
+    EXPECT_LT(norm(Rcv - R), 1e-6);
+    EXPECT_LT(norm(tcv - t), 1e-6);
+    // The refined motion comes with its covariance, symmetric positive definite.
+    ASSERT_EQ(covariance.size(), Size(5, 5));
+    EXPECT_LT(norm(covariance - covariance.t()), 1e-12 * norm(covariance));
+    Mat eigenvalues;
+    eigen(covariance, eigenvalues);
+    EXPECT_GT(eigenvalues.at<double>(4), 0.0);
+}
+
+TEST(Rcme_Standard, finds_the_true_inliers)
+{
+    const SyntheticScene scene = genericScene(5, 0.4, 400);
+    Mat mask;
+    Status status;
+    const Mat F = findFundamentalMat(scene.points1, scene.points2, standardParams(), mask, status);
+    ASSERT_EQ(status, STATUS_SUCCESS);
+    ASSERT_EQ(F.size(), Size(3, 3));
+    EXPECT_NEAR(norm(F), 1.0, 1e-9);
+    int truePositive = 0, falsePositive = 0;
+    for (int i = 0; i < mask.rows; ++i) {
+        truePositive += mask.at<uchar>(i) && scene.inlierMask.at<uchar>(i);
+        falsePositive += mask.at<uchar>(i) && !scene.inlierMask.at<uchar>(i);
+    }
+    EXPECT_GT(truePositive, 0.9 * countNonZero(scene.inlierMask));
+    EXPECT_LT(falsePositive, 0.05 * countNonZero(scene.inlierMask));
+    // Every mask entry is 0 or 1, never 255 or other values.
+    double maxValue = 0;
+    minMaxLoc(mask, nullptr, &maxValue);
+    EXPECT_EQ(maxValue, 1.0);
+}
+
+TEST(Rcme_Standard, same_seed_same_result_and_seed_matters)
+{
+    const SyntheticScene scene = genericScene(9, 0.3);
+    Params params = standardParams(42);
+    params.exactIterations = true;
+    params.maxIterations = 50;
+    params.refine = false;
+    const Report a = estimateRelativeMotion(scene.points1, scene.points2, noArray(), params);
+    const Report b = estimateRelativeMotion(scene.points1, scene.points2, noArray(), params);
+    ASSERT_EQ(a.status, STATUS_SUCCESS);
+    EXPECT_EQ(norm(a.F, b.F, NORM_INF), 0.0);
+    EXPECT_EQ(norm(a.mask, b.mask, NORM_INF), 0.0);
+    params.randomGeneratorState = 43;
+    const Report c = estimateRelativeMotion(scene.points1, scene.points2, noArray(), params);
+    EXPECT_GT(norm(a.F, c.F, NORM_INF), 0.0);
+}
+
+TEST(Rcme_Standard, exact_iterations_mode_runs_exactly_n)
+{
+    const SyntheticScene scene = genericScene(2, 0.8);
+    Params params = standardParams();
+    params.maxIterations = 300;
+    const Report adaptive = estimateRelativeMotion(scene.points1, scene.points2, noArray(), params);
+    EXPECT_LT(adaptive.iterations, 300); // w = 0.8 needs ~25 iterations at p = 0.99
+    params.exactIterations = true;
+    const Report exact = estimateRelativeMotion(scene.points1, scene.points2, noArray(), params);
+    EXPECT_EQ(exact.iterations, 300);
+}
+
+TEST(Rcme_Standard, report_holds_everything)
+{
+    const SyntheticScene scene = genericScene(4);
+    const Report r =
+        estimateRelativeMotion(scene.points1, scene.points2, scene.cameraMatrix, standardParams());
+    ASSERT_EQ(r.status, STATUS_SUCCESS);
+    EXPECT_TRUE(r.message.empty());
+    EXPECT_EQ(r.F.size(), Size(3, 3));
+    EXPECT_EQ(r.E.size(), Size(3, 3));
+    EXPECT_EQ(r.R.size(), Size(3, 3));
+    EXPECT_EQ(r.t.size(), Size(1, 3));
+    EXPECT_EQ(r.covariance.size(), Size(5, 5));
+    EXPECT_EQ(r.mask.rows, scene.points1.rows);
+    EXPECT_EQ(r.inlierCount, countNonZero(r.mask));
+    EXPECT_GT(r.iterations, 0);
+    EXPECT_GE(r.timeSeconds, 0.0);
+    EXPECT_TRUE(cvIsNaN(r.meanEntropy)); // only RCME computes entropies
+    // F is consistent with K and E.
+    const Mat K = scene.cameraMatrix, Kinv = K.inv();
+    Mat F = Kinv.t() * r.E * Kinv;
+    F /= norm(F);
+    EXPECT_LT(std::min(norm(F - r.F), norm(F + r.F)), 1e-9);
+}
+
+TEST(Rcme_Standard, calibrated_fundamental_has_equal_singular_values)
+{
+    const SyntheticScene scene = genericScene(6);
+    Mat mask;
+    Status status;
+    const Mat F = findFundamentalMat(scene.points1, scene.points2, scene.cameraMatrix,
+                                     standardParams(), mask, status);
+    ASSERT_EQ(status, STATUS_SUCCESS);
+    const Mat E = scene.cameraMatrix.t() * F * scene.cameraMatrix;
+    Mat w;
+    SVDecomp(E, w, noArray(), noArray());
+    EXPECT_NEAR(w.at<double>(0), w.at<double>(1), 1e-9 * w.at<double>(0));
+    EXPECT_LT(w.at<double>(2), 1e-9 * w.at<double>(0));
+}
+
+TEST(Rcme_Standard, threads_give_the_serial_results)
+{
+    std::vector<SyntheticScene> scenes;
+    std::vector<Report> serial;
+    for (int i = 0; i < 4; ++i) {
+        scenes.push_back(genericScene(20 + i));
+        serial.push_back(estimateRelativeMotion(scenes[i].points1, scenes[i].points2,
+                                                scenes[i].cameraMatrix, standardParams(i)));
+    }
+    std::vector<Report> parallel(4);
+    std::vector<std::thread> threads;
+    for (int i = 0; i < 4; ++i)
+        threads.emplace_back([&, i] {
+            parallel[i] = estimateRelativeMotion(scenes[i].points1, scenes[i].points2,
+                                                 scenes[i].cameraMatrix, standardParams(i));
+        });
+    for (auto& thread : threads)
+        thread.join();
+    for (int i = 0; i < 4; ++i) {
+        ASSERT_EQ(parallel[i].status, serial[i].status);
+        EXPECT_EQ(norm(parallel[i].R, serial[i].R, NORM_INF), 0.0);
+        EXPECT_EQ(norm(parallel[i].mask, serial[i].mask, NORM_INF), 0.0);
+    }
+}
+
+TEST(Rcme_Standard, accepts_opencv_point_layouts)
+{
+    const SyntheticScene scene = genericScene(8);
+    const Params params = standardParams();
+    Mat reference;
+    Status status;
+    const Mat F = findFundamentalMat(scene.points1, scene.points2, params, reference, status);
+    ASSERT_EQ(status, STATUS_SUCCESS);
+
+    std::vector<Point2d> v1, v2;
+    std::vector<Point2f> f1, f2;
+    for (int i = 0; i < scene.points1.rows; ++i) {
+        v1.emplace_back(scene.points1.at<double>(i, 0), scene.points1.at<double>(i, 1));
+        v2.emplace_back(scene.points2.at<double>(i, 0), scene.points2.at<double>(i, 1));
+        f1.emplace_back(v1.back());
+        f2.emplace_back(v2.back());
+    }
+    const Mat nx1 = Mat(v1).clone(), nx1b = Mat(v2).clone();            // Nx1 CV_64FC2
+    const Mat oneByN = nx1.reshape(2, 1), oneByNb = nx1b.reshape(2, 1); // 1xN CV_64FC2
+    Mat mask;
+    EXPECT_EQ(norm(findFundamentalMat(v1, v2, params, mask, status), F, NORM_INF), 0.0);
+    EXPECT_EQ(norm(findFundamentalMat(nx1, nx1b, params, mask, status), F, NORM_INF), 0.0);
+    EXPECT_EQ(norm(findFundamentalMat(oneByN, oneByNb, params, mask, status), F, NORM_INF), 0.0);
+    EXPECT_EQ(mask.size(), Size(1, scene.points1.rows)); // Nx1 whatever the input layout
+    // Float input: the same estimate up to float rounding.
+    const Mat Ff = findFundamentalMat(f1, f2, params, mask, status);
+    ASSERT_EQ(status, STATUS_SUCCESS);
+    EXPECT_LT(std::min(norm(Ff - F), norm(Ff + F)), 1e-3);
+}
+
+TEST(Rcme_Standard, drop_in_signatures_match_opencv_usage)
+{
+    const SyntheticScene scene = genericScene(10);
+    Mat mask;
+    // Same call as cv::findFundamentalMat(p1, p2, FM_RANSAC, 3, 0.99, 1000, mask).
+    const Mat F = cv::rcme::findFundamentalMat(scene.points1, scene.points2, FM_RANSAC, 3.0, 0.99,
+                                               1000, mask);
+    ASSERT_EQ(F.size(), Size(3, 3));
+    EXPECT_EQ(mask.rows, scene.points1.rows);
+    const Mat F2 = cv::rcme::findFundamentalMat(scene.points1, scene.points2, FM_RANSAC, 3.0, 0.99);
+    EXPECT_EQ(F2.size(), Size(3, 3));
+    // findEssentialMat + recoverPose as in OpenCV code.
+    const Mat E = cv::rcme::findEssentialMat(scene.points1, scene.points2, scene.cameraMatrix,
+                                             RANSAC, 0.999, 1.0, 1000, mask);
+    ASSERT_EQ(E.size(), Size(3, 3));
+    Mat R, t;
+    const int inliers =
+        cv::rcme::recoverPose(E, scene.points1, scene.points2, scene.cameraMatrix, R, t, mask);
+    EXPECT_GT(inliers, 100);
+    EXPECT_LT(compareMotion(R, t, scene.R, scene.t).rotationDeg, 1.0);
+    // Focal / principal point forms.
+    const double focal = scene.cameraMatrix.at<double>(0, 0);
+    const Point2d pp(scene.cameraMatrix.at<double>(0, 2), scene.cameraMatrix.at<double>(1, 2));
+    const Mat E2 = cv::rcme::findEssentialMat(scene.points1, scene.points2, focal, pp, RANSAC,
+                                              0.999, 1.0, 1000, mask);
+    ASSERT_EQ(E2.size(), Size(3, 3));
+    Mat R2, t2;
+    cv::rcme::recoverPose(E2, scene.points1, scene.points2, R2, t2, focal, pp, mask);
+    EXPECT_LT(compareMotion(R2, t2, scene.R, scene.t).rotationDeg, 1.0);
+}
+
+TEST(Rcme_Standard, params_from_usac_params)
+{
+    UsacParams usac;
+    usac.confidence = 0.95;
+    usac.maxIterations = 123;
+    usac.randomGeneratorState = 77;
+    usac.threshold = 2.5;
+    usac.sampler = SAMPLING_UNIFORM;
+    const Params params(usac);
+    EXPECT_EQ(params.confidence, 0.95);
+    EXPECT_EQ(params.maxIterations, 123);
+    EXPECT_EQ(params.randomGeneratorState, 77);
+    EXPECT_EQ(params.threshold, 2.5);
+    EXPECT_EQ(params.sampler, SAMPLER_UNIFORM);
+    usac.sampler = SAMPLING_NAPSAC;
+    EXPECT_THROW(Params{usac}, cv::Exception);
+}
+
+} // namespace
+} // namespace opencv_test
