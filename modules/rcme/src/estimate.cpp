@@ -56,27 +56,23 @@ Estimation estimate(InputArray points1, InputArray points2, InputArray cameraMat
     report.message = result.message;
     if (result.status == STATUS_SUCCESS) {
         detail::Model& model = result.model;
-        report.F = toMat(model.F);
         if (data.calibrated) {
-            if (!model.hasMotion &&
-                detail::recoverMotionFromEssential(model.E, data.points1, data.points2, data.Kinv,
-                                                   &out.mask, model.R, model.t) > 0)
-                model.hasMotion = true;
-            const int inFront =
-                model.hasMotion
-                    ? detail::countPointsInFront(model.R, model.t, data.points1, data.points2,
-                                                 data.Kinv, &out.mask, &out.inFront)
-                    : 0;
-            if (inFront == 0) {
+            // The loop gives every calibrated estimate its motion.
+            CV_Assert(model.hasMotion);
+            if (detail::countPointsInFront(model.R, model.t, data.points1, data.points2, data.Kinv,
+                                           &out.mask, &out.inFront) == 0) {
                 fail(report, out.mask, STATUS_DEGENERATE_CONFIGURATION,
                      "no decomposition of E puts the inliers in front of both cameras");
             } else {
+                report.F = toMat(model.F);
                 report.E = toMat(detail::skew(model.t) * model.R);
                 report.R = toMat(model.R);
                 report.t = toMat(model.t);
                 if (model.hasCovariance)
                     report.covariance = toMat(model.covariance);
             }
+        } else {
+            report.F = toMat(model.F);
         }
     }
     report.iterations = result.iterations;

@@ -65,13 +65,16 @@ TEST(Rcme_EightPointSolver, exact_on_noise_free_data)
         for (bool calibrated : {false, true}) {
             const TwoViewData data = sceneData(scene, calibrated);
             const std::vector<int> sample = {0, 11, 22, 33, 44, 55, 66, 77};
-            std::vector<Model> models;
-            auto solver = createEightPointSolver();
-            ASSERT_EQ(solver->estimate(data, sample, models), 1);
-            EXPECT_LT((models[0].F - trueF(scene)).norm(), 1e-6) << "seed " << seed;
-            for (size_t i = 0; i < data.points1.size(); ++i)
-                EXPECT_LT(sampsonDistanceSquared(models[0].F, data.points1[i], data.points2[i]),
-                          1e-10);
+            for (bool essential : {false, true}) {
+                std::vector<Model> models;
+                auto solver = createEightPointSolver(essential);
+                ASSERT_EQ(solver->estimate(data, sample, models), 1);
+                EXPECT_LT((models[0].F - trueF(scene)).norm(), 1e-6) << "seed " << seed;
+                EXPECT_EQ(models[0].E.isZero(), !(essential && calibrated));
+                for (size_t i = 0; i < data.points1.size(); ++i)
+                    EXPECT_LT(sampsonDistanceSquared(models[0].F, data.points1[i], data.points2[i]),
+                              1e-10);
+            }
         }
     }
 }
@@ -84,7 +87,7 @@ TEST(Rcme_EightPointSolver, rejects_degenerate_samples)
         data.points2.emplace_back(10.0 * i, 5.0 * i);
     }
     std::vector<Model> models;
-    auto solver = createEightPointSolver();
+    auto solver = createEightPointSolver(false);
     const std::vector<int> sample = {0, 1, 2, 3, 4, 5, 6, 7};
     EXPECT_EQ(solver->estimate(data, sample, models), 0);
     for (int i = 0; i < 8; ++i) // collinear in both images
@@ -229,6 +232,10 @@ TEST(Rcme_GoldStandardRefiner, improves_a_perturbed_estimate)
         cv2eigen(scene.cameraMatrix, K);
         model.E = skew(t) * R;
         model.F = fundamentalFromEssential(model.E, K.inverse());
+        // A motion is refined as a motion (5 DoF); otherwise the refiner works on F (7 DoF).
+        model.hasMotion = calibrated;
+        model.R = R;
+        model.t = t;
         const std::vector<uchar> all(data.points1.size(), 1);
         auto cost = [&](const Eigen::Matrix3d& F) {
             double c = 0;

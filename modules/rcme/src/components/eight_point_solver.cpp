@@ -2,8 +2,11 @@
 // found in the top-level directory of this distribution.
 
 // Box "model instantiation" of Fig. 1 with the normalized 8-point algorithm (Hartley &
-// Zisserman, alg. 11.1). With a camera matrix the result is projected onto the essential
-// manifold, so hypotheses are motions (5 DoF) fitted by 8 parameters: over-parameterized.
+// Zisserman, alg. 11.1): 8 parameters for a 7-DoF F, over-parameterized. Optionally, with a
+// camera matrix, the result is projected onto the essential manifold so that every hypothesis is
+// a motion (5 DoF). That projection no longer fits the sample exactly: on noisy clean samples
+// it keeps about half as many inliers as the rank-2 F (measured on the generic scene), so the
+// Standard method scores the rank-2 F and recovers the motion from the selected model only.
 
 #include "framework/components.hpp"
 #include "geometry/epipolar.hpp"
@@ -17,6 +20,10 @@ namespace {
 class EightPointSolver final : public MinimalSolver
 {
 public:
+    explicit EightPointSolver(bool essentialHypotheses) : essentialHypotheses_(essentialHypotheses)
+    {
+    }
+
     int sampleSize() const override { return 8; }
     int maxSolutions() const override { return 1; }
     bool isOverParameterized() const override { return true; }
@@ -51,9 +58,8 @@ public:
         Fn << f(0), f(1), f(2), f(3), f(4), f(5), f(6), f(7), f(8);
 
         Model model;
-        if (data.calibrated) {
-            const Eigen::Matrix3d F = T2.transpose() * Fn * T1;
-            model.E = projectToEssential(data.K.transpose() * F * data.K);
+        if (data.calibrated && essentialHypotheses_) {
+            model.E = essentialFromFundamental(T2.transpose() * Fn * T1, data.K);
             model.F = fundamentalFromEssential(model.E, data.Kinv);
         } else {
             Eigen::JacobiSVD<Eigen::Matrix3d> svd(Fn, Eigen::ComputeFullU | Eigen::ComputeFullV);
@@ -68,13 +74,16 @@ public:
         models.push_back(model);
         return 1;
     }
+
+private:
+    bool essentialHypotheses_;
 };
 
 } // namespace
 
-std::unique_ptr<MinimalSolver> createEightPointSolver()
+std::unique_ptr<MinimalSolver> createEightPointSolver(bool essentialHypotheses)
 {
-    return std::make_unique<EightPointSolver>();
+    return std::make_unique<EightPointSolver>(essentialHypotheses);
 }
 
 } // namespace detail

@@ -3,8 +3,9 @@
 
 // Box 4 of Fig. 1, model refinement: the Gold Standard maximum-likelihood estimate on the inliers
 // (Hartley & Zisserman, alg. 11.3) in its first-order form, Levenberg-Marquardt on the Sampson
-// distances over a minimal parameterization (5-DoF motion with K, 7-DoF F without). The Gauss-
-// Newton matrix at the optimum also gives the motion's covariance, sigma^2 (J^T J)^-1.
+// distances over a minimal parameterization of the model as it is: the 5-DoF motion when it has
+// one, the 7-DoF F otherwise. For a motion, the Gauss-Newton matrix at the optimum also gives its
+// covariance, sigma^2 (J^T J)^-1.
 
 #include "framework/components.hpp"
 #include "geometry/epipolar.hpp"
@@ -158,8 +159,8 @@ public:
         for (size_t i = 0; i < mask.size(); ++i)
             if (mask[i])
                 inliers.push_back(static_cast<int>(i));
-        if (data.calibrated)
-            return refineMotion(data, mask, inliers, model);
+        if (model.hasMotion)
+            return refineMotion(data, inliers, model);
         // A 7-DoF F needs more than 7 constraints to be refined at all.
         if (inliers.size() <= FundamentalProblem::kDof)
             return false;
@@ -176,17 +177,11 @@ public:
     }
 
 private:
-    bool refineMotion(const TwoViewData& data, const std::vector<uchar>& mask,
-                      const std::vector<int>& inliers, Model& model) const
+    bool refineMotion(const TwoViewData& data, const std::vector<int>& inliers, Model& model) const
     {
+        CV_Assert(data.calibrated);
         if (inliers.size() <= MotionProblem::kDof)
             return false;
-        if (!model.hasMotion) {
-            if (recoverMotionFromEssential(model.E, data.points1, data.points2, data.Kinv, &mask,
-                                           model.R, model.t) <= 0)
-                return false;
-            model.hasMotion = true;
-        }
         MotionProblem problem{data.Kinv, model.R, model.t, model.R, model.t};
         levenbergMarquardt(data, inliers, problem, maxIterations_);
         model.R = problem.R;

@@ -19,7 +19,8 @@ namespace detail {
 struct Model
 {
     Eigen::Matrix3d F = Eigen::Matrix3d::Zero(); //!< pixel fundamental matrix, ||F|| = 1
-    //! Set when the data is calibrated: E = [t]x R, and F = K^-T E K^-1 (up to scale).
+    //! Set when the hypothesis is an essential matrix (calibrated data): F = K^-T E K^-1 up to
+    //! scale. Otherwise zero, and the motion comes from F once a model is selected.
     Eigen::Matrix3d E = Eigen::Matrix3d::Zero();
     //! Motion, valid when hasMotion: x2 = R x1 + t, |t| = 1.
     bool hasMotion = false;
@@ -29,6 +30,11 @@ struct Model
     bool hasCovariance = false;
     Eigen::Matrix<double, 5, 5> covariance = Eigen::Matrix<double, 5, 5>::Zero();
 };
+
+/** Gives a model of calibrated data its motion: E (from F when the hypothesis was not
+essential) is decomposed with cheirality on `inliers`, and E, F are set from (R, t). False when
+no decomposition puts any inlier in front of both cameras. */
+bool recoverMotion(const TwoViewData& data, const std::vector<uchar>& inliers, Model& model);
 
 //! Quality of a hypothesis as a scorer sees it; lower value is better.
 struct Score
@@ -123,7 +129,9 @@ struct EstimatorComponents
 
 // Factories of the component implementations, one file each under components/.
 std::unique_ptr<Sampler> createUniformSampler(int pointCount, int sampleSize, uint64_t seed);
-std::unique_ptr<MinimalSolver> createEightPointSolver();
+//! With `essentialHypotheses` and calibrated data, hypotheses are projected onto the essential
+//! manifold (E set); otherwise they are rank-2 F.
+std::unique_ptr<MinimalSolver> createEightPointSolver(bool essentialHypotheses);
 std::unique_ptr<Scorer> createInlierCountScorer(const TwoViewData& data, int sampleSize,
                                                 int maxIterations);
 std::unique_ptr<Termination> createAdaptiveTermination(double confidence, int maxIterations,

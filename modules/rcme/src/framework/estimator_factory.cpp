@@ -13,7 +13,7 @@ namespace detail {
 EstimatorComponents createEstimator(const Params& params, const TwoViewData& data)
 {
     EstimatorComponents c;
-    c.solver = createEightPointSolver();
+    c.solver = createEightPointSolver(/*essentialHypotheses=*/false);
     const int m = c.solver->sampleSize();
     if (data.size() >= m)
         c.sampler = createUniformSampler(data.size(), m,

@@ -18,21 +18,29 @@ bool passesVerifiers(EstimatorComponents& c, const TwoViewData& data,
     return true;
 }
 
-// Refines the selected model; keeps the refinement only if the scorer still accepts it and
-// likes it at least as much, so a diverging refinement cannot spoil a good estimate.
+// Refines the selected model on its inliers and classifies again, until the inlier set stops
+// changing (a refined model usually gathers inliers its minimal sample missed). A refinement is
+// kept only if the scorer still accepts it and likes it at least as much, so a diverging
+// refinement cannot spoil a good estimate.
 void refineSelected(const TwoViewData& data, EstimatorComponents& c, RansacResult& result)
 {
+    constexpr int kMaxRounds = 10;
     if (!c.refiner)
         return;
-    Model refined = result.model;
-    if (!c.refiner->refine(data, result.mask, refined))
-        return;
-    const Score refinedScore = c.scorer->score(data, refined);
-    if (!refinedScore.isCandidate || result.score.isBetterThan(refinedScore))
-        return;
-    result.model = refined;
-    result.score = refinedScore;
-    c.scorer->classify(data, result.model, result.mask);
+    for (int round = 0; round < kMaxRounds; ++round) {
+        Model refined = result.model;
+        if (!c.refiner->refine(data, result.mask, refined))
+            return;
+        const Score refinedScore = c.scorer->score(data, refined);
+        if (!refinedScore.isCandidate || result.score.isBetterThan(refinedScore))
+            return;
+        result.model = refined;
+        result.score = refinedScore;
+        const std::vector<uchar> previousMask = result.mask;
+        c.scorer->classify(data, result.model, result.mask);
+        if (result.mask == previousMask)
+            return;
+    }
 }
 
 } // namespace
@@ -92,6 +100,26 @@ RansacResult runRansac(const TwoViewData& data, EstimatorComponents& c)
 
     c.scorer->classify(data, result.model, result.mask);
     refineSelected(data, c, result);
+    if (data.calibrated && !result.model.hasMotion) {
+        // The (refined) F becomes a motion: the closest essential matrix, decomposed with
+        // cheirality, scored again and refined in motion space. Refining F first matters: the
+        // F of a noisy minimal sample is far from any essential matrix.
+        if (!recoverMotion(data, result.mask, result.model)) {
+            result.status = STATUS_DEGENERATE_CONFIGURATION;
+            result.message = "no decomposition of E puts the inliers in front of both cameras";
+            std::fill(result.mask.begin(), result.mask.end(), 0);
+            return result;
+        }
+        result.score = c.scorer->score(data, result.model);
+        c.scorer->classify(data, result.model, result.mask);
+        refineSelected(data, c, result);
+    }
+    if (!result.score.isCandidate) {
+        result.status = STATUS_POOR_QUALITY_INPUT;
+        result.message = "the motion closest to the selected hypothesis fails the acceptance tests";
+        std::fill(result.mask.begin(), result.mask.end(), 0);
+        return result;
+    }
     result.status = STATUS_SUCCESS;
     return result;
 }

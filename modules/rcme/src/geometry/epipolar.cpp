@@ -41,6 +41,11 @@ Eigen::Matrix3d projectToEssential(const Eigen::Matrix3d& E)
     return svd.matrixU() * Eigen::Vector3d(1, 1, 0).asDiagonal() * svd.matrixV().transpose();
 }
 
+Eigen::Matrix3d essentialFromFundamental(const Eigen::Matrix3d& F, const Eigen::Matrix3d& K)
+{
+    return projectToEssential(K.transpose() * F * K);
+}
+
 Eigen::Matrix3d fundamentalFromEssential(const Eigen::Matrix3d& E, const Eigen::Matrix3d& Kinv)
 {
     return normalizeFundamental(Kinv.transpose() * E * Kinv);

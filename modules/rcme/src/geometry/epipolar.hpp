@@ -74,6 +74,9 @@ Eigen::Matrix3d normalizeFundamental(const Eigen::Matrix3d& F);
 //! Closest essential matrix: singular values replaced by (1, 1, 0).
 Eigen::Matrix3d projectToEssential(const Eigen::Matrix3d& E);
 
+//! The essential matrix closest to K^T F K: the calibrated reading of an F.
+Eigen::Matrix3d essentialFromFundamental(const Eigen::Matrix3d& F, const Eigen::Matrix3d& K);
+
 //! F = K^-T E K^-1, normalised.
 Eigen::Matrix3d fundamentalFromEssential(const Eigen::Matrix3d& E, const Eigen::Matrix3d& Kinv);
 
