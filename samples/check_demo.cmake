@@ -1,0 +1,28 @@
+# Checks used by the CTest tests of samples/CMakeLists.txt (run with cmake -P).
+#   -DMODE=png -DFILE=<png>: FILE exists and starts with the PNG signature.
+#   -DMODE=missing -DDEMO=<demo> -DFILE=<path>: the demo given the missing image FILE exits with 2
+#   and names FILE in its message.
+if(MODE STREQUAL "png")
+  if(NOT EXISTS "${FILE}")
+    message(FATAL_ERROR "the demo did not write ${FILE}")
+  endif()
+  file(READ "${FILE}" signature LIMIT 8 HEX)
+  if(NOT signature STREQUAL "89504e470d0a1a0a")
+    message(FATAL_ERROR "${FILE} is not a PNG file (signature ${signature})")
+  endif()
+  message(STATUS "${FILE} is a PNG file")
+elseif(MODE STREQUAL "missing")
+  file(REMOVE "${FILE}")
+  execute_process(COMMAND "${DEMO}" "${FILE}" "${FILE}"
+    RESULT_VARIABLE result OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT result EQUAL 2)
+    message(FATAL_ERROR "expected exit code 2 for a missing image, got '${result}'\n${out}${err}")
+  endif()
+  string(FIND "${out}${err}" "${FILE}" pos)
+  if(pos EQUAL -1)
+    message(FATAL_ERROR "the message does not name the missing file ${FILE}:\n${out}${err}")
+  endif()
+  message(STATUS "missing image reported: ${err}")
+else()
+  message(FATAL_ERROR "unknown MODE '${MODE}'")
+endif()
