@@ -1,0 +1,812 @@
+// This file is part of the rcme module. It is subject to the license terms in the LICENSE file
+// found in the top-level directory of this distribution.
+
+// Standalone Python bindings of the rcme module (pybind11): `import rcme`.
+//
+// They reproduce the surface that OpenCV's Python generator (4.6) gives `cv2.rcme` from the
+// public headers, so that one Python test suite and one sample run against both:
+// - functions keep their C++ names and overload order; required inputs are positional in
+//   declaration order, output arrays are optional arguments placed before the first defaulted
+//   input, and the result is `retval` followed by every output in declaration order;
+// - enum values are module-level ints; enum-typed fields and outputs are ints;
+// - CV_EXPORTS_W_SIMPLE structs are classes whose attributes have the C++ field names;
+// - arrays come in as NumPy arrays (or None for an empty array); an empty output Mat comes back
+//   as None, a non-empty one as a NumPy array (single-channel 2D -> (rows, cols));
+// - an output array passed in by the caller is written in place when its size and type already
+//   fit, and returned as the same object, as cv2 does;
+// - cv::Exception becomes `rcme.error` (like cv2.error: message, code, err, func, file, line).
+// Extensions over cv2: Params and SceneParams accept keyword arguments, points may be given as
+// Python sequences, and integer point arrays are converted to float64.
+
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+
+#include <opencv2/rcme.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <sstream>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace py = pybind11;
+using namespace cv::rcme;
+
+namespace {
+
+PyObject* g_error = nullptr; // rcme.error, created at import and kept for the process lifetime
+
+[[noreturn]] void raiseBadArg(const std::string& message, const char* func)
+{
+    throw cv::Exception(cv::Error::StsBadArg, message, func, __FILE__, __LINE__);
+}
+
+// ------------------------------------------------------------------------------------------
+// NumPy <-> cv::Mat
+
+//! How an input array is converted.
+enum class Conv
+{
+    Float, //!< coordinates and matrices: float32 and float64 kept, integers/bool -> float64
+    Any    //!< masks: every dtype OpenCV knows kept as is (bool -> uint8, int64 -> int32)
+};
+
+//! An input Mat plus whatever keeps its memory alive when it wraps a NumPy buffer.
+struct InMat
+{
+    cv::Mat mat;
+    py::object keep;        //!< the contiguous array whose buffer mat wraps, if any
+    bool isCallers = false; //!< keep is the caller's own array (so writes reach the caller)
+};
+
+int depthOf(const py::dtype& dt)
+{
+    const char kind = dt.kind();
+    const auto size = dt.itemsize();
+    if (kind == 'f')
+        return size == 8 ? CV_64F : size == 4 ? CV_32F : size == 2 ? CV_16F : -1;
+    if (kind == 'u')
+        return size == 1 ? CV_8U : size == 2 ? CV_16U : -1;
+    if (kind == 'i')
+        return size == 1 ? CV_8S : size == 2 ? CV_16S : size == 4 ? CV_32S : -1;
+    return -1;
+}
+
+py::dtype dtypeOf(int depth)
+{
+    switch (depth) {
+    case CV_8U:
+        return py::dtype("uint8");
+    case CV_8S:
+        return py::dtype("int8");
+    case CV_16U:
+        return py::dtype("uint16");
+    case CV_16S:
+        return py::dtype("int16");
+    case CV_32S:
+        return py::dtype("int32");
+    case CV_32F:
+        return py::dtype("float32");
+    case CV_64F:
+        return py::dtype("float64");
+    case CV_16F:
+        return py::dtype("float16");
+    default:
+        break;
+    }
+    CV_Error(cv::Error::StsUnsupportedFormat, "rcme: a result has an unsupported depth");
+}
+
+std::string dtypeName(const py::dtype& dt)
+{
+    return py::cast<std::string>(dt.attr("name"));
+}
+
+//! The dtype the array is converted to before wrapping, or an empty string when unsupported.
+std::string targetDtype(const py::dtype& dt, Conv conv)
+{
+    const char kind = dt.kind();
+    if (conv == Conv::Float) {
+        if (kind == 'f' && (dt.itemsize() == 8 || dt.itemsize() == 4))
+            return dt.itemsize() == 8 ? "float64" : "float32";
+        if (kind == 'f' || kind == 'i' || kind == 'u' || kind == 'b')
+            return "float64";
+        return "";
+    }
+    if (kind == 'b')
+        return "uint8";
+    if (depthOf(dt) >= 0)
+        return dtypeName(dt);
+    if (kind == 'i' || kind == 'u')
+        return "int32"; // as cv2 does for int64
+    return "";
+}
+
+//! Wraps a C-contiguous array, with cv2's shape rules: (k,) -> k x 1; (r, c) -> r x c;
+//! (r, c, n) with n <= CV_CN_MAX -> r x c with n channels; higher ranks -> N-d Mat.
+cv::Mat wrapArray(const py::array& a)
+{
+    const int depth = depthOf(a.dtype());
+    CV_Assert(depth >= 0);
+    std::vector<int> sizes;
+    for (py::ssize_t i = 0; i < a.ndim(); ++i)
+        sizes.push_back(static_cast<int>(a.shape(i)));
+    int channels = 1;
+    if (sizes.size() == 3 && sizes[2] >= 1 && sizes[2] <= CV_CN_MAX) {
+        channels = sizes[2];
+        sizes.pop_back();
+    }
+    if (sizes.empty())
+        sizes = {1, 1};
+    else if (sizes.size() == 1)
+        sizes.push_back(1);
+    const int type = CV_MAKETYPE(depth, channels);
+    if (a.size() == 0)
+        return cv::Mat(static_cast<int>(sizes.size()), sizes.data(), type);
+    return cv::Mat(static_cast<int>(sizes.size()), sizes.data(), type, const_cast<void*>(a.data()));
+}
+
+/** Converts a Python argument to a Mat: None -> empty; a number -> 4x1 CV_64F (as cv2 does for
+scalars); a NumPy array or a nested sequence of numbers -> a Mat wrapping its buffer when it is
+C-contiguous with a supported dtype, a converted copy otherwise. Errors name the argument. */
+InMat toMat(py::handle obj, const char* name, Conv conv, const char* func)
+{
+    InMat r;
+    if (!obj || obj.is_none())
+        return r;
+    if (!py::isinstance<py::array>(obj) && (PyFloat_Check(obj.ptr()) || PyLong_Check(obj.ptr()))) {
+        const double v[4] = {py::cast<double>(obj), 0., 0., 0.};
+        r.mat = cv::Mat(4, 1, CV_64F, const_cast<double*>(v)).clone();
+        return r;
+    }
+    py::array arr;
+    if (py::isinstance<py::array>(obj)) {
+        arr = py::reinterpret_borrow<py::array>(obj);
+    } else if (PySequence_Check(obj.ptr()) && !py::isinstance<py::str>(obj) &&
+               !py::isinstance<py::bytes>(obj)) {
+        try {
+            arr = py::module_::import("numpy").attr("asarray")(obj);
+        } catch (const py::error_already_set&) {
+            raiseBadArg(std::string(name) + " is not a numpy array, neither a sequence of numbers",
+                        func);
+        }
+    } else {
+        raiseBadArg(std::string(name) + " is not a numpy array, neither a scalar", func);
+    }
+    const std::string target = targetDtype(arr.dtype(), conv);
+    if (target.empty())
+        raiseBadArg(std::string(name) + " has an unsupported data type '" + dtypeName(arr.dtype()) +
+                        "'",
+                    func);
+    py::array c = py::module_::import("numpy").attr("ascontiguousarray")(arr, target);
+    if (c.ndim() != arr.ndim()) // ascontiguousarray returns at least 1-D; keep cv2's 1x1
+        c = c.attr("reshape")(arr.attr("shape"));
+    r.isCallers = c.ptr() == obj.ptr();
+    r.mat = wrapArray(c);
+    r.keep = std::move(c);
+    return r;
+}
+
+//! A Mat as a new NumPy array, or None when it has no data (what cv2 returns for empty Mats).
+py::object fromMat(const cv::Mat& m)
+{
+    if (!m.data)
+        return py::none();
+    std::vector<py::ssize_t> shape;
+    for (int i = 0; i < m.dims; ++i)
+        shape.push_back(m.size[i]);
+    if (m.channels() > 1)
+        shape.push_back(m.channels());
+    py::array out(dtypeOf(m.depth()), shape);
+    cv::Mat dst(m.dims, m.size.p, m.type(), out.mutable_data());
+    m.copyTo(dst);
+    return std::move(out);
+}
+
+//! An output array argument: the Mat the C++ function writes, wrapping the caller's array when
+//! it is a writeable C-contiguous array of a supported dtype (then writes land in place).
+struct OutMat
+{
+    cv::Mat mat;
+    py::object provided;
+    const void* data = nullptr;
+};
+
+OutMat toOutMat(py::handle obj)
+{
+    OutMat o;
+    if (!obj || obj.is_none() || !py::isinstance<py::array>(obj))
+        return o;
+    auto a = py::reinterpret_borrow<py::array>(obj);
+    const bool contiguous = (a.flags() & py::array::c_style) != 0;
+    const bool writeable = a.writeable();
+    if (!contiguous || !writeable || depthOf(a.dtype()) < 0 || a.size() == 0)
+        return o;
+    o.mat = wrapArray(a);
+    o.provided = py::reinterpret_borrow<py::object>(obj);
+    o.data = o.mat.data;
+    return o;
+}
+
+//! The Python value of an output: the caller's array when it was written in place, else a copy.
+py::object finishOut(const OutMat& o)
+{
+    if (o.provided && o.mat.data && o.mat.data == o.data)
+        return o.provided;
+    return fromMat(o.mat);
+}
+
+//! An input/output array (recoverPose's mask): the input, wrapped in place when possible.
+OutMat toInOutMat(py::handle obj, const char* name, const char* func)
+{
+    OutMat o;
+    InMat in = toMat(obj, name, Conv::Any, func);
+    if (in.isCallers && in.keep && py::reinterpret_borrow<py::array>(in.keep).writeable()) {
+        o.mat = in.mat;
+        o.provided = in.keep;
+        o.data = o.mat.data;
+    } else {
+        o.mat = in.mat.clone(); // owns its data, so the C++ side may write it freely
+    }
+    return o;
+}
+
+cv::Point2d toPoint2d(py::handle obj, const char* name, const char* func)
+{
+    try {
+        py::sequence s = py::reinterpret_borrow<py::sequence>(obj);
+        if (PySequence_Check(obj.ptr()) && py::len(s) == 2)
+            return cv::Point2d(py::cast<double>(s[0]), py::cast<double>(s[1]));
+    } catch (const py::error_already_set&) {
+    } catch (const py::cast_error&) {
+    }
+    raiseBadArg(std::string(name) + " must be a sequence of two numbers", func);
+}
+
+cv::Mat matField(py::handle value, const char* name)
+{
+    // Fields own their data: a copy, never a view of a Python buffer.
+    return toMat(value, name, Conv::Any, "setattr").mat.clone();
+}
+
+// ------------------------------------------------------------------------------------------
+// Struct classes
+
+//! Adds the read/write attributes of a struct and remembers their names (for keyword
+//! construction and repr).
+template <class T> class Fields
+{
+public:
+    explicit Fields(py::class_<T>& cls) : cls_(cls) {}
+
+    template <class M> Fields& plain(const char* name, M T::*member, const char* doc = "")
+    {
+        cls_.def_readwrite(name, member, doc);
+        names_.emplace_back(name);
+        return *this;
+    }
+
+    template <class E> Fields& enumInt(const char* name, E T::*member, const char* doc = "")
+    {
+        cls_.def_property(
+            name, [member](const T& self) { return static_cast<int>(self.*member); },
+            [member](T& self, int v) { self.*member = static_cast<E>(v); }, doc);
+        names_.emplace_back(name);
+        return *this;
+    }
+
+    Fields& mat(const char* name, cv::Mat T::*member, const char* doc = "")
+    {
+        cls_.def_property(
+            name, [member](const T& self) { return fromMat(self.*member); },
+            [member, name](T& self, py::object v) { self.*member = matField(v, name); }, doc);
+        names_.emplace_back(name);
+        return *this;
+    }
+
+    //! `__repr__` listing every field, e.g. Params(method=1026, sigma=1.0, ...).
+    void addRepr(const std::string& className)
+    {
+        auto names = names_;
+        cls_.def("__repr__", [names, className](py::object self) {
+            std::ostringstream s;
+            s << className << "(";
+            for (size_t i = 0; i < names.size(); ++i) {
+                py::object v = self.attr(names[i].c_str());
+                std::string text = py::isinstance<py::array>(v)
+                                       ? "<array " + std::string(py::str(v.attr("shape"))) + " " +
+                                             std::string(py::str(v.attr("dtype"))) + ">"
+                                       : std::string(py::repr(v));
+                s << (i ? ", " : "") << names[i] << "=" << text;
+            }
+            s << ")";
+            return s.str();
+        });
+    }
+
+    //! Constructor from keyword arguments (a convenience over cv2, where structs take none).
+    void addKeywordInit(const std::string& className)
+    {
+        auto names = names_;
+        cls_.def(py::init([names, className](const py::kwargs& kwargs) {
+                     py::object self = py::cast(T());
+                     for (const auto& kv : kwargs) {
+                         const std::string key = py::cast<std::string>(kv.first);
+                         if (std::find(names.begin(), names.end(), key) == names.end())
+                             throw py::type_error(className +
+                                                  "() got an unexpected keyword "
+                                                  "argument '" +
+                                                  key + "'");
+                         py::setattr(self, kv.first, kv.second);
+                     }
+                     return py::cast<T>(self);
+                 }),
+                 ("Keyword form: every field may be given by name, the others keep their "
+                  "defaults, e.g. " +
+                  className + "(" + names.front() + "=...).")
+                     .c_str());
+    }
+
+private:
+    py::class_<T>& cls_;
+    std::vector<std::string> names_;
+};
+
+//! Params(usacParams): any object with cv2.UsacParams' attributes (duck typing, so that a
+//! cv2.UsacParams from the installed cv2 works without this module depending on cv2).
+Params paramsFromUsac(const py::object& u)
+{
+    if (!py::hasattr(u, "confidence") || !py::hasattr(u, "maxIterations") ||
+        !py::hasattr(u, "threshold"))
+        throw py::type_error("Params(usacParams): usacParams must be a cv2.UsacParams");
+    cv::UsacParams usac;
+    auto get = [&u](const char* name, auto& field) {
+        if (py::hasattr(u, name))
+            field = py::cast<std::decay_t<decltype(field)>>(u.attr(name));
+    };
+    auto getEnum = [&u](const char* name, auto& field) {
+        if (py::hasattr(u, name))
+            field = static_cast<std::decay_t<decltype(field)>>(py::cast<int>(u.attr(name)));
+    };
+    get("confidence", usac.confidence);
+    get("isParallel", usac.isParallel);
+    get("loIterations", usac.loIterations);
+    getEnum("loMethod", usac.loMethod);
+    get("loSampleSize", usac.loSampleSize);
+    get("maxIterations", usac.maxIterations);
+    getEnum("neighborsSearch", usac.neighborsSearch);
+    get("randomGeneratorState", usac.randomGeneratorState);
+    getEnum("sampler", usac.sampler);
+    getEnum("score", usac.score);
+    get("threshold", usac.threshold);
+    return Params(usac);
+}
+
+// ------------------------------------------------------------------------------------------
+// Docstrings: first line as the OpenCV generator writes it.
+
+const char* const kDocFindFundamentalParams =
+    "findFundamentalMat(points1, points2, params[, mask]) -> retval, mask, status\n"
+    ".   @brief Fundamental matrix with an explicit status (an int, see STATUS_*).\n"
+    ".   retval is the 3x3 float64 F (None unless status == STATUS_SUCCESS); mask is the Nx1\n"
+    ".   uint8 inlier mask, always sized N.";
+const char* const kDocFindFundamentalCalibrated =
+    "findFundamentalMat(points1, points2, cameraMatrix, params[, mask]) -> retval, mask, status\n"
+    ".   @brief Fundamental matrix of a calibrated pair (hypotheses are essential matrices).";
+const char* const kDocFindFundamentalDropIn =
+    "findFundamentalMat(points1, points2, method, ransacReprojThreshold, confidence, maxIters"
+    "[, mask]) -> retval, mask\n"
+    ".   @brief Drop-in for cv2.findFundamentalMat; method is cv2.FM_RANSAC or a METHOD_* value.";
+const char* const kDocFindEssentialParams =
+    "findEssentialMat(points1, points2, cameraMatrix, params[, mask]) -> retval, mask, status\n"
+    ".   @brief Essential matrix with an explicit status.";
+const char* const kDocFindEssentialDropIn =
+    "findEssentialMat(points1, points2, cameraMatrix[, method[, prob[, threshold[, maxIters"
+    "[, mask]]]]]) -> retval, mask\n"
+    ".   @brief Drop-in for cv2.findEssentialMat; method is cv2.RANSAC or a METHOD_* value.";
+const char* const kDocFindEssentialFocal =
+    "findEssentialMat(points1, points2[, focal[, pp[, method[, prob[, threshold[, maxIters"
+    "[, mask]]]]]]]) -> retval, mask\n"
+    ".   @overload Camera matrix given by focal length and principal point.";
+const char* const kDocRecoverPoseParams =
+    "recoverPose(points1, points2, cameraMatrix, params[, E[, R[, t[, mask[, covariance]]]]]) "
+    "-> retval, E, R, t, mask, status, covariance\n"
+    ".   @brief Estimates E robustly and recovers the motion x2 = R x1 + t, |t| = 1.\n"
+    ".   retval is the number of inliers that pass cheirality.";
+const char* const kDocRecoverPoseE =
+    "recoverPose(E, points1, points2, cameraMatrix[, R[, t[, mask]]]) -> retval, R, t, mask\n"
+    ".   @brief Drop-in for cv2.recoverPose from a known essential matrix.";
+const char* const kDocRecoverPoseFocal =
+    "recoverPose(E, points1, points2[, R[, t[, focal[, pp[, mask]]]]]) -> retval, R, t, mask\n"
+    ".   @overload Camera matrix given by focal length and principal point.";
+const char* const kDocEstimate =
+    "estimateRelativeMotion(points1, points2, cameraMatrix[, params]) -> retval\n"
+    ".   @brief Estimates the two-view geometry and returns everything in one Report.\n"
+    ".   cameraMatrix may be None (uncalibrated: only F).";
+const char* const kDocGenerateScene =
+    "generateScene([, params]) -> retval\n"
+    ".   @brief Generates a SyntheticScene deterministically from its SceneParams.";
+const char* const kDocCompareMotion =
+    "compareMotion(R, t, Rgt, tgt) -> retval\n"
+    ".   @brief Compares an estimated motion with the truth; returns a MotionError.";
+const char* const kDocStatusToString =
+    "statusToString(status) -> retval\n"
+    ".   @brief A short English name of a STATUS_* value, e.g. \"poor quality input\".";
+
+} // namespace
+
+PYBIND11_MODULE(rcme, m)
+{
+    py::options options;
+    options.disable_function_signatures(); // the docstrings carry cv2-style signatures
+
+    m.doc() = "Robust camera motion estimation (model quality aware RANSAC): the standalone "
+              "twin of cv2.rcme.";
+
+    // --- errors
+    g_error = PyErr_NewException("rcme.error", PyExc_Exception, nullptr);
+    if (!g_error)
+        throw py::error_already_set();
+    m.attr("error") = py::handle(g_error);
+    py::register_exception_translator([](std::exception_ptr p) {
+        try {
+            if (p)
+                std::rethrow_exception(p);
+        } catch (const cv::Exception& e) {
+            try {
+                py::object type = py::reinterpret_borrow<py::object>(g_error);
+                py::object inst = type(e.what());
+                inst.attr("code") = e.code;
+                inst.attr("err") = e.err;
+                inst.attr("func") = e.func;
+                inst.attr("file") = e.file;
+                inst.attr("line") = e.line;
+                PyErr_SetObject(g_error, inst.ptr());
+            } catch (...) {
+                PyErr_SetString(g_error, e.what());
+            }
+        }
+    });
+
+    // --- enum values: module-level ints, as the generator exports plain enums
+    m.attr("METHOD_RCME") = static_cast<int>(METHOD_RCME);
+    m.attr("METHOD_PRCME") = static_cast<int>(METHOD_PRCME);
+    m.attr("METHOD_STANDARD") = static_cast<int>(METHOD_STANDARD);
+    m.attr("METHOD_MLESAC") = static_cast<int>(METHOD_MLESAC);
+    m.attr("METHOD_COV_RANSAC") = static_cast<int>(METHOD_COV_RANSAC);
+    m.attr("SAMPLER_UNIFORM") = static_cast<int>(SAMPLER_UNIFORM);
+    m.attr("SAMPLER_PROSAC") = static_cast<int>(SAMPLER_PROSAC);
+    m.attr("SOLVER_EIGHT_POINT") = static_cast<int>(SOLVER_EIGHT_POINT);
+    m.attr("SOLVER_SEVEN_POINT") = static_cast<int>(SOLVER_SEVEN_POINT);
+    m.attr("SOLVER_FIVE_POINT") = static_cast<int>(SOLVER_FIVE_POINT);
+    m.attr("STATUS_SUCCESS") = static_cast<int>(STATUS_SUCCESS);
+    m.attr("STATUS_POOR_QUALITY_INPUT") = static_cast<int>(STATUS_POOR_QUALITY_INPUT);
+    m.attr("STATUS_NOT_ENOUGH_POINTS") = static_cast<int>(STATUS_NOT_ENOUGH_POINTS);
+    m.attr("STATUS_DEGENERATE_CONFIGURATION") = static_cast<int>(STATUS_DEGENERATE_CONFIGURATION);
+    m.attr("SCENE_CORRIDOR") = static_cast<int>(SCENE_CORRIDOR);
+    m.attr("SCENE_GENERIC") = static_cast<int>(SCENE_GENERIC);
+
+    // --- Params
+    py::class_<Params> params(m, "Params",
+                              "Parameters of the robust estimators, shaped like cv2.UsacParams.");
+    params.def(py::init<>(), "Params() -> <rcme.Params object>\n.   Every field at its default.");
+    params.def(py::init(&paramsFromUsac), py::arg("usacParams"),
+               "Params(usacParams) -> <rcme.Params object>\n"
+               ".   Carries over confidence, maxIterations, randomGeneratorState, threshold and "
+               "sampler from a cv2.UsacParams.");
+    Fields<Params> paramsFields(params);
+    paramsFields.enumInt("method", &Params::method, "METHOD_*; default METHOD_STANDARD")
+        .enumInt("sampler", &Params::sampler, "SAMPLER_*; default SAMPLER_UNIFORM")
+        .enumInt("solver", &Params::solver, "SOLVER_*; default SOLVER_EIGHT_POINT")
+        .plain("sigma", &Params::sigma, "noise standard deviation, pixels; default 1")
+        .plain("threshold", &Params::threshold, "Sampson threshold, pixels; <= 0: 1.96 sigma")
+        .plain("confidence", &Params::confidence, "default 0.99")
+        .plain("maxIterations", &Params::maxIterations, "default 1000")
+        .plain("exactIterations", &Params::exactIterations, "default False")
+        .plain("randomGeneratorState", &Params::randomGeneratorState, "seed; default 0")
+        .plain("refine", &Params::refine, "default True")
+        .plain("refineIterations", &Params::refineIterations, "default 20")
+        .plain("alpha", &Params::alpha, "significance of RCME's tests; default 0.05")
+        .plain("entropyThreshold", &Params::entropyThreshold, "RCME's mu over the noise floor")
+        .plain("inlierRatioFactor", &Params::inlierRatioFactor, "RCME's lambda")
+        .plain("priorInlierRatio", &Params::priorInlierRatio, "RCME's omega_p; <= 0: estimated")
+        .plain("consistencyDof", &Params::consistencyDof, "dof of RCME's chi-square tests");
+    paramsFields.addKeywordInit("Params");
+    paramsFields.addRepr("Params");
+
+    // --- Report
+    py::class_<Report> report(m, "Report", "Everything an estimation produced.");
+    report.def(py::init<>(), "Report() -> <rcme.Report object>");
+    Fields<Report> reportFields(report);
+    reportFields.enumInt("status", &Report::status, "STATUS_*")
+        .plain("message", &Report::message, "why the status is not STATUS_SUCCESS")
+        .mat("F", &Report::F, "3x3 fundamental matrix or None")
+        .mat("E", &Report::E, "3x3 essential matrix or None")
+        .mat("R", &Report::R, "3x3 rotation or None")
+        .mat("t", &Report::t, "3x1 unit translation or None")
+        .mat("mask", &Report::mask, "Nx1 uint8 inlier mask")
+        .plain("inlierCount", &Report::inlierCount)
+        .plain("iterations", &Report::iterations)
+        .plain("meanEntropy", &Report::meanEntropy)
+        .mat("covariance", &Report::covariance, "5x5 motion covariance or None")
+        .plain("timeSeconds", &Report::timeSeconds);
+    reportFields.addRepr("Report");
+
+    // --- SceneParams, SyntheticScene, MotionError
+    py::class_<SceneParams> sceneParams(m, "SceneParams",
+                                        "Parameters of the synthetic scene generator.");
+    sceneParams.def(py::init<>(), "SceneParams() -> <rcme.SceneParams object>");
+    Fields<SceneParams> sceneParamsFields(sceneParams);
+    sceneParamsFields.enumInt("kind", &SceneParams::kind, "SCENE_*; default SCENE_CORRIDOR")
+        .plain("numPoints", &SceneParams::numPoints)
+        .plain("inlierRatio", &SceneParams::inlierRatio)
+        .plain("sigma", &SceneParams::sigma)
+        .plain("seed", &SceneParams::seed)
+        .plain("focalLength", &SceneParams::focalLength)
+        .plain("imageWidth", &SceneParams::imageWidth)
+        .plain("imageHeight", &SceneParams::imageHeight)
+        .plain("baseline", &SceneParams::baseline)
+        .plain("corridorDepth", &SceneParams::corridorDepth)
+        .plain("corridorWidth", &SceneParams::corridorWidth)
+        .plain("corridorHeight", &SceneParams::corridorHeight);
+    sceneParamsFields.addKeywordInit("SceneParams");
+    sceneParamsFields.addRepr("SceneParams");
+
+    py::class_<SyntheticScene> scene(m, "SyntheticScene",
+                                     "A generated two-view scene with its ground truth.");
+    scene.def(py::init<>(), "SyntheticScene() -> <rcme.SyntheticScene object>");
+    Fields<SyntheticScene> sceneFields(scene);
+    sceneFields.mat("points1", &SyntheticScene::points1)
+        .mat("points2", &SyntheticScene::points2)
+        .mat("inlierMask", &SyntheticScene::inlierMask)
+        .mat("cameraMatrix", &SyntheticScene::cameraMatrix)
+        .mat("R", &SyntheticScene::R)
+        .mat("t", &SyntheticScene::t)
+        .mat("F", &SyntheticScene::F)
+        .mat("E", &SyntheticScene::E);
+    sceneFields.addRepr("SyntheticScene");
+
+    py::class_<MotionError> motionError(m, "MotionError",
+                                        "Differences between an estimated and a true motion.");
+    motionError.def(py::init<>(), "MotionError() -> <rcme.MotionError object>");
+    Fields<MotionError> motionErrorFields(motionError);
+    motionErrorFields.plain("dq", &MotionError::dq)
+        .plain("dt", &MotionError::dt)
+        .plain("rotationDeg", &MotionError::rotationDeg)
+        .plain("translationDeg", &MotionError::translationDeg);
+    motionErrorFields.addRepr("MotionError");
+
+    // --- functions, overloads in header order (cv2 tries them in that order too)
+    m.def(
+        "statusToString",
+        [](int status) { return cv::rcme::statusToString(static_cast<Status>(status)); },
+        py::arg("status"), kDocStatusToString);
+
+    m.def(
+        "estimateRelativeMotion",
+        [](py::object points1, py::object points2, py::object cameraMatrix, const Params& p) {
+            const char* f = "estimateRelativeMotion";
+            InMat p1 = toMat(points1, "points1", Conv::Float, f);
+            InMat p2 = toMat(points2, "points2", Conv::Float, f);
+            InMat k = toMat(cameraMatrix, "cameraMatrix", Conv::Float, f);
+            py::gil_scoped_release nogil;
+            return cv::rcme::estimateRelativeMotion(p1.mat, p2.mat, k.mat, p);
+        },
+        py::arg("points1"), py::arg("points2"), py::arg("cameraMatrix"),
+        py::arg("params") = Params(), kDocEstimate);
+
+    m.def(
+        "findFundamentalMat",
+        [](py::object points1, py::object points2, const Params& p, py::object mask) {
+            const char* f = "findFundamentalMat";
+            InMat p1 = toMat(points1, "points1", Conv::Float, f);
+            InMat p2 = toMat(points2, "points2", Conv::Float, f);
+            OutMat outMask = toOutMat(mask);
+            cv::Mat F;
+            Status status = STATUS_SUCCESS;
+            {
+                py::gil_scoped_release nogil;
+                F = cv::rcme::findFundamentalMat(p1.mat, p2.mat, p, outMask.mat, status);
+            }
+            return py::make_tuple(fromMat(F), finishOut(outMask), static_cast<int>(status));
+        },
+        py::arg("points1"), py::arg("points2"), py::arg("params"), py::arg("mask") = py::none(),
+        kDocFindFundamentalParams);
+
+    m.def(
+        "findFundamentalMat",
+        [](py::object points1, py::object points2, py::object cameraMatrix, const Params& p,
+           py::object mask) {
+            const char* f = "findFundamentalMat";
+            InMat p1 = toMat(points1, "points1", Conv::Float, f);
+            InMat p2 = toMat(points2, "points2", Conv::Float, f);
+            InMat k = toMat(cameraMatrix, "cameraMatrix", Conv::Float, f);
+            OutMat outMask = toOutMat(mask);
+            cv::Mat F;
+            Status status = STATUS_SUCCESS;
+            {
+                py::gil_scoped_release nogil;
+                F = cv::rcme::findFundamentalMat(p1.mat, p2.mat, k.mat, p, outMask.mat, status);
+            }
+            return py::make_tuple(fromMat(F), finishOut(outMask), static_cast<int>(status));
+        },
+        py::arg("points1"), py::arg("points2"), py::arg("cameraMatrix"), py::arg("params"),
+        py::arg("mask") = py::none(), kDocFindFundamentalCalibrated);
+
+    m.def(
+        "findFundamentalMat",
+        [](py::object points1, py::object points2, int method, double ransacReprojThreshold,
+           double confidence, int maxIters, py::object mask) {
+            const char* f = "findFundamentalMat";
+            InMat p1 = toMat(points1, "points1", Conv::Float, f);
+            InMat p2 = toMat(points2, "points2", Conv::Float, f);
+            OutMat outMask = toOutMat(mask);
+            cv::Mat F;
+            {
+                py::gil_scoped_release nogil;
+                F = cv::rcme::findFundamentalMat(p1.mat, p2.mat, method, ransacReprojThreshold,
+                                                 confidence, maxIters, outMask.mat);
+            }
+            return py::make_tuple(fromMat(F), finishOut(outMask));
+        },
+        py::arg("points1"), py::arg("points2"), py::arg("method"), py::arg("ransacReprojThreshold"),
+        py::arg("confidence"), py::arg("maxIters"), py::arg("mask") = py::none(),
+        kDocFindFundamentalDropIn);
+
+    m.def(
+        "findEssentialMat",
+        [](py::object points1, py::object points2, py::object cameraMatrix, const Params& p,
+           py::object mask) {
+            const char* f = "findEssentialMat";
+            InMat p1 = toMat(points1, "points1", Conv::Float, f);
+            InMat p2 = toMat(points2, "points2", Conv::Float, f);
+            InMat k = toMat(cameraMatrix, "cameraMatrix", Conv::Float, f);
+            OutMat outMask = toOutMat(mask);
+            cv::Mat E;
+            Status status = STATUS_SUCCESS;
+            {
+                py::gil_scoped_release nogil;
+                E = cv::rcme::findEssentialMat(p1.mat, p2.mat, k.mat, p, outMask.mat, status);
+            }
+            return py::make_tuple(fromMat(E), finishOut(outMask), static_cast<int>(status));
+        },
+        py::arg("points1"), py::arg("points2"), py::arg("cameraMatrix"), py::arg("params"),
+        py::arg("mask") = py::none(), kDocFindEssentialParams);
+
+    m.def(
+        "findEssentialMat",
+        [](py::object points1, py::object points2, py::object cameraMatrix, int method, double prob,
+           double threshold, int maxIters, py::object mask) {
+            const char* f = "findEssentialMat";
+            InMat p1 = toMat(points1, "points1", Conv::Float, f);
+            InMat p2 = toMat(points2, "points2", Conv::Float, f);
+            InMat k = toMat(cameraMatrix, "cameraMatrix", Conv::Float, f);
+            OutMat outMask = toOutMat(mask);
+            cv::Mat E;
+            {
+                py::gil_scoped_release nogil;
+                E = cv::rcme::findEssentialMat(p1.mat, p2.mat, k.mat, method, prob, threshold,
+                                               maxIters, outMask.mat);
+            }
+            return py::make_tuple(fromMat(E), finishOut(outMask));
+        },
+        py::arg("points1"), py::arg("points2"), py::arg("cameraMatrix"),
+        py::arg("method") = static_cast<int>(cv::RANSAC), py::arg("prob") = 0.999,
+        py::arg("threshold") = 1.0, py::arg("maxIters") = 1000, py::arg("mask") = py::none(),
+        kDocFindEssentialDropIn);
+
+    m.def(
+        "findEssentialMat",
+        [](py::object points1, py::object points2, double focal, py::object pp, int method,
+           double prob, double threshold, int maxIters, py::object mask) {
+            const char* f = "findEssentialMat";
+            InMat p1 = toMat(points1, "points1", Conv::Float, f);
+            InMat p2 = toMat(points2, "points2", Conv::Float, f);
+            const cv::Point2d principal = toPoint2d(pp, "pp", f);
+            OutMat outMask = toOutMat(mask);
+            cv::Mat E;
+            {
+                py::gil_scoped_release nogil;
+                E = cv::rcme::findEssentialMat(p1.mat, p2.mat, focal, principal, method, prob,
+                                               threshold, maxIters, outMask.mat);
+            }
+            return py::make_tuple(fromMat(E), finishOut(outMask));
+        },
+        py::arg("points1"), py::arg("points2"), py::arg("focal") = 1.0,
+        py::arg("pp") = py::make_tuple(0.0, 0.0), py::arg("method") = static_cast<int>(cv::RANSAC),
+        py::arg("prob") = 0.999, py::arg("threshold") = 1.0, py::arg("maxIters") = 1000,
+        py::arg("mask") = py::none(), kDocFindEssentialFocal);
+
+    m.def(
+        "recoverPose",
+        [](py::object points1, py::object points2, py::object cameraMatrix, const Params& p,
+           py::object E, py::object R, py::object t, py::object mask, py::object covariance) {
+            const char* f = "recoverPose";
+            InMat p1 = toMat(points1, "points1", Conv::Float, f);
+            InMat p2 = toMat(points2, "points2", Conv::Float, f);
+            InMat k = toMat(cameraMatrix, "cameraMatrix", Conv::Float, f);
+            OutMat outE = toOutMat(E), outR = toOutMat(R), outT = toOutMat(t);
+            OutMat outMask = toOutMat(mask), outCov = toOutMat(covariance);
+            Status status = STATUS_SUCCESS;
+            int retval = 0;
+            {
+                py::gil_scoped_release nogil;
+                retval = cv::rcme::recoverPose(p1.mat, p2.mat, k.mat, outE.mat, outR.mat, outT.mat,
+                                               p, outMask.mat, status, outCov.mat);
+            }
+            return py::make_tuple(retval, finishOut(outE), finishOut(outR), finishOut(outT),
+                                  finishOut(outMask), static_cast<int>(status), finishOut(outCov));
+        },
+        py::arg("points1"), py::arg("points2"), py::arg("cameraMatrix"), py::arg("params"),
+        py::arg("E") = py::none(), py::arg("R") = py::none(), py::arg("t") = py::none(),
+        py::arg("mask") = py::none(), py::arg("covariance") = py::none(), kDocRecoverPoseParams);
+
+    m.def(
+        "recoverPose",
+        [](py::object E, py::object points1, py::object points2, py::object cameraMatrix,
+           py::object R, py::object t, py::object mask) {
+            const char* f = "recoverPose";
+            InMat e = toMat(E, "E", Conv::Float, f);
+            InMat p1 = toMat(points1, "points1", Conv::Float, f);
+            InMat p2 = toMat(points2, "points2", Conv::Float, f);
+            InMat k = toMat(cameraMatrix, "cameraMatrix", Conv::Float, f);
+            OutMat outR = toOutMat(R), outT = toOutMat(t);
+            OutMat ioMask = toInOutMat(mask, "mask", f);
+            int retval = 0;
+            {
+                py::gil_scoped_release nogil;
+                retval = cv::rcme::recoverPose(e.mat, p1.mat, p2.mat, k.mat, outR.mat, outT.mat,
+                                               ioMask.mat);
+            }
+            return py::make_tuple(retval, finishOut(outR), finishOut(outT), finishOut(ioMask));
+        },
+        py::arg("E"), py::arg("points1"), py::arg("points2"), py::arg("cameraMatrix"),
+        py::arg("R") = py::none(), py::arg("t") = py::none(), py::arg("mask") = py::none(),
+        kDocRecoverPoseE);
+
+    m.def(
+        "recoverPose",
+        [](py::object E, py::object points1, py::object points2, py::object R, py::object t,
+           double focal, py::object pp, py::object mask) {
+            const char* f = "recoverPose";
+            InMat e = toMat(E, "E", Conv::Float, f);
+            InMat p1 = toMat(points1, "points1", Conv::Float, f);
+            InMat p2 = toMat(points2, "points2", Conv::Float, f);
+            const cv::Point2d principal = toPoint2d(pp, "pp", f);
+            OutMat outR = toOutMat(R), outT = toOutMat(t);
+            OutMat ioMask = toInOutMat(mask, "mask", f);
+            int retval = 0;
+            {
+                py::gil_scoped_release nogil;
+                retval = cv::rcme::recoverPose(e.mat, p1.mat, p2.mat, outR.mat, outT.mat, focal,
+                                               principal, ioMask.mat);
+            }
+            return py::make_tuple(retval, finishOut(outR), finishOut(outT), finishOut(ioMask));
+        },
+        py::arg("E"), py::arg("points1"), py::arg("points2"), py::arg("R") = py::none(),
+        py::arg("t") = py::none(), py::arg("focal") = 1.0, py::arg("pp") = py::make_tuple(0.0, 0.0),
+        py::arg("mask") = py::none(), kDocRecoverPoseFocal);
+
+    m.def(
+        "generateScene",
+        [](const SceneParams& p) {
+            py::gil_scoped_release nogil;
+            return cv::rcme::generateScene(p);
+        },
+        py::arg("params") = SceneParams(), kDocGenerateScene);
+
+    m.def(
+        "compareMotion",
+        [](py::object R, py::object t, py::object Rgt, py::object tgt) {
+            const char* f = "compareMotion";
+            InMat r = toMat(R, "R", Conv::Float, f);
+            InMat tt = toMat(t, "t", Conv::Float, f);
+            InMat rgt = toMat(Rgt, "Rgt", Conv::Float, f);
+            InMat tgtm = toMat(tgt, "tgt", Conv::Float, f);
+            py::gil_scoped_release nogil;
+            return cv::rcme::compareMotion(r.mat, tt.mat, rgt.mat, tgtm.mat);
+        },
+        py::arg("R"), py::arg("t"), py::arg("Rgt"), py::arg("tgt"), kDocCompareMotion);
+}
