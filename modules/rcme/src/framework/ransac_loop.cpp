@@ -102,14 +102,18 @@ RansacResult runRansac(const TwoViewData& data, EstimatorComponents& c)
     refineSelected(data, c, result);
     if (data.calibrated && !result.model.hasMotion) {
         // The (refined) F becomes a motion: the closest essential matrix, decomposed with
-        // cheirality, scored again and refined in motion space. Refining F first matters: the
-        // F of a noisy minimal sample is far from any essential matrix.
+        // cheirality, then refined in motion space. Refining F first matters: the F of a noisy
+        // minimal sample is far from any essential matrix.
         if (!recoverMotion(data, result.mask, result.model)) {
             result.status = STATUS_DEGENERATE_CONFIGURATION;
             result.message = "no decomposition of E puts the inliers in front of both cameras";
             std::fill(result.mask.begin(), result.mask.end(), 0);
             return result;
         }
+        // The motion's maximum-likelihood fit on the F's inliers comes before classifying
+        // again: the bare projection can lose most of them.
+        if (c.refiner)
+            c.refiner->refine(data, result.mask, result.model);
         result.score = c.scorer->score(data, result.model);
         c.scorer->classify(data, result.model, result.mask);
         refineSelected(data, c, result);
