@@ -597,43 +597,34 @@ PYBIND11_MODULE(rcme, m)
         py::arg("points1"), py::arg("points2"), py::arg("cameraMatrix"),
         py::arg("params") = Params(), kDocEstimate);
 
+    // The calibrated form is the general one; without a camera matrix it is passed as None,
+    // which converts to an empty array, as the C++ overload passes noArray().
+    auto findFundamentalWithCamera = [](py::object points1, py::object points2,
+                                        py::object cameraMatrix, const Params& p, py::object mask) {
+        const char* f = "findFundamentalMat";
+        InMat p1 = toMat(points1, "points1", Conv::Float, f);
+        InMat p2 = toMat(points2, "points2", Conv::Float, f);
+        InMat k = toMat(cameraMatrix, "cameraMatrix", Conv::Float, f);
+        OutMat outMask = toOutMat(mask);
+        cv::Mat F;
+        Status status = STATUS_SUCCESS;
+        {
+            py::gil_scoped_release nogil;
+            F = cv::rcme::findFundamentalMat(p1.mat, p2.mat, k.mat, p, outMask.mat, status);
+        }
+        return py::make_tuple(fromMat(F), finishOut(outMask), static_cast<int>(status));
+    };
     m.def(
         "findFundamentalMat",
-        [](py::object points1, py::object points2, const Params& p, py::object mask) {
-            const char* f = "findFundamentalMat";
-            InMat p1 = toMat(points1, "points1", Conv::Float, f);
-            InMat p2 = toMat(points2, "points2", Conv::Float, f);
-            OutMat outMask = toOutMat(mask);
-            cv::Mat F;
-            Status status = STATUS_SUCCESS;
-            {
-                py::gil_scoped_release nogil;
-                F = cv::rcme::findFundamentalMat(p1.mat, p2.mat, p, outMask.mat, status);
-            }
-            return py::make_tuple(fromMat(F), finishOut(outMask), static_cast<int>(status));
+        [findFundamentalWithCamera](py::object points1, py::object points2, const Params& p,
+                                    py::object mask) {
+            return findFundamentalWithCamera(points1, points2, py::none(), p, mask);
         },
         py::arg("points1"), py::arg("points2"), py::arg("params"), py::arg("mask") = py::none(),
         kDocFindFundamentalParams);
-
-    m.def(
-        "findFundamentalMat",
-        [](py::object points1, py::object points2, py::object cameraMatrix, const Params& p,
-           py::object mask) {
-            const char* f = "findFundamentalMat";
-            InMat p1 = toMat(points1, "points1", Conv::Float, f);
-            InMat p2 = toMat(points2, "points2", Conv::Float, f);
-            InMat k = toMat(cameraMatrix, "cameraMatrix", Conv::Float, f);
-            OutMat outMask = toOutMat(mask);
-            cv::Mat F;
-            Status status = STATUS_SUCCESS;
-            {
-                py::gil_scoped_release nogil;
-                F = cv::rcme::findFundamentalMat(p1.mat, p2.mat, k.mat, p, outMask.mat, status);
-            }
-            return py::make_tuple(fromMat(F), finishOut(outMask), static_cast<int>(status));
-        },
-        py::arg("points1"), py::arg("points2"), py::arg("cameraMatrix"), py::arg("params"),
-        py::arg("mask") = py::none(), kDocFindFundamentalCalibrated);
+    m.def("findFundamentalMat", findFundamentalWithCamera, py::arg("points1"), py::arg("points2"),
+          py::arg("cameraMatrix"), py::arg("params"), py::arg("mask") = py::none(),
+          kDocFindFundamentalCalibrated);
 
     m.def(
         "findFundamentalMat",
