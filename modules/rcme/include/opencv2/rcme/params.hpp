@@ -120,6 +120,7 @@ Matrices are CV_64F; all but mask are empty unless status is #STATUS_SUCCESS.
 */
 struct CV_EXPORTS_W_SIMPLE Report
 {
+    //! An empty report: status #STATUS_POOR_QUALITY_INPUT, no model, NaN mean entropy.
     CV_WRAP Report();
     CV_PROP_RW Status status;      //!< outcome; the models below are set only on success
     CV_PROP_RW String message;     //!< why the status is not #STATUS_SUCCESS, empty otherwise

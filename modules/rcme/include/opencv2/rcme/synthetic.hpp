@@ -44,6 +44,7 @@ struct CV_EXPORTS_W_SIMPLE SceneParams
 //! A generated two-view scene with its ground truth.
 struct CV_EXPORTS_W_SIMPLE SyntheticScene
 {
+    //! An empty scene (all matrices empty).
     CV_WRAP SyntheticScene();
     CV_PROP_RW Mat points1;      //!< Nx2 CV_64F pixels in the first image
     CV_PROP_RW Mat points2;      //!< Nx2 CV_64F pixels in the second image
@@ -66,6 +67,7 @@ CV_EXPORTS_W SyntheticScene generateScene(const SceneParams& params = SceneParam
 //! Differences between an estimated and a true motion (the paper's metrics and angular ones).
 struct CV_EXPORTS_W_SIMPLE MotionError
 {
+    //! All fields NaN.
     CV_WRAP MotionError();
     CV_PROP_RW double dq;             //!< min(|q - q_gt|, |q + q_gt|) on unit quaternions
     CV_PROP_RW double dt;             //!< |t - t_gt| on unit translations
