@@ -101,7 +101,7 @@ CV_EXPORTS_W Mat findEssentialMat(InputArray points1, InputArray points2, double
 both cameras), as cv::recoverPose leaves it.
 @param status outcome; E, R, t are empty unless it is #STATUS_SUCCESS.
 @param covariance optional output 5x5 covariance of the motion in its tangent space
-(see Report::covariance); empty when the method does not propagate uncertainty.
+(see Report::covariance); empty when it is not known (e.g. refinement off).
 @return the number of inliers that pass cheirality, as cv::recoverPose.
 */
 CV_EXPORTS_W int recoverPose(InputArray points1, InputArray points2, InputArray cameraMatrix,

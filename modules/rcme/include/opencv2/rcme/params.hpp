@@ -133,7 +133,9 @@ struct CV_EXPORTS_W_SIMPLE Report
     CV_PROP_RW int iterations;     //!< hypotheses drawn
     CV_PROP_RW double meanEntropy; //!< RCME's mean inlier entropy psi (nats), NaN for other methods
     /** 5x5 covariance of the motion in the tangent space (rotation increment omega, rad, then
-    the two components of the translation direction increment), only with a camera matrix */
+    the two components of the translation direction increment in an orthonormal basis of t's
+    complement), only with a camera matrix: sigma^2 (J^T J)^-1 of the Gold Standard refinement,
+    empty when refinement is off */
     CV_PROP_RW Mat covariance;
     CV_PROP_RW double timeSeconds; //!< wall time of the call
 };
