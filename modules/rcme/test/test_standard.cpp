@@ -239,6 +239,14 @@ TEST(Rcme_Standard, accepts_opencv_point_layouts)
     EXPECT_EQ(norm(findFundamentalMat(nx1, nx1b, params, mask, status), F, NORM_INF), 0.0);
     EXPECT_EQ(norm(findFundamentalMat(oneByN, oneByNb, params, mask, status), F, NORM_INF), 0.0);
     EXPECT_EQ(mask.size(), Size(1, scene.points1.rows)); // Nx1 whatever the input layout
+    // Non-continuous views (columns of a wider matrix) give the same estimate.
+    Mat both;
+    hconcat(scene.points1, scene.points2, both);
+    EXPECT_FALSE(both.colRange(0, 2).isContinuous());
+    EXPECT_EQ(
+        norm(findFundamentalMat(both.colRange(0, 2), both.colRange(2, 4), params, mask, status), F,
+             NORM_INF),
+        0.0);
     // Float input: the same estimate up to float rounding.
     const Mat Ff = findFundamentalMat(f1, f2, params, mask, status);
     ASSERT_EQ(status, STATUS_SUCCESS);

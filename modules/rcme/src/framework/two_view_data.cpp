@@ -43,7 +43,8 @@ std::vector<Eigen::Vector2d> readPoints(InputArray points, const char* argName)
     if (points.empty())
         CV_Error(Error::StsBadArg, cv::format("%s is empty", argName));
     const Mat m = points.getMat();
-    const int count = m.checkVector(2);
+    // Non-continuous input (a strided NumPy slice, a ROI) is accepted and copied below.
+    const int count = m.checkVector(2, -1, /*requireContinuous=*/false);
     if (count <= 0)
         CV_Error(Error::StsBadArg,
                  cv::format("%s must be Nx2 (1 channel), Nx1 or 1xN (2 channels), got %dx%d with "
