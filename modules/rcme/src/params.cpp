@@ -34,6 +34,11 @@ Params::Params(const UsacParams& usac) : Params()
     }
 }
 
+Params Params::fromUsacParams(const UsacParams& usacParams)
+{
+    return Params(usacParams);
+}
+
 Report::Report()
     : status(STATUS_POOR_QUALITY_INPUT), inlierCount(0), iterations(0),
       meanEntropy(std::numeric_limits<double>::quiet_NaN()), timeSeconds(0)

@@ -73,8 +73,14 @@ struct CV_EXPORTS_W_SIMPLE Params
     /** @brief Carries over the fields shared with cv::UsacParams: confidence, maxIterations,
     randomGeneratorState, threshold, and sampler (uniform or PROSAC). The other USAC fields
     (score, local optimisation, neighbourhoods, isParallel) have no counterpart and are ignored;
-    NAPSAC samplers raise cv::Error::StsBadArg. */
-    CV_WRAP explicit Params(const UsacParams& usacParams);
+    NAPSAC samplers raise cv::Error::StsBadArg.
+
+    Not wrapped for Python: OpenCV's generator (4.6) turns an exception thrown by a constructor
+    of a simple struct into a SystemError without its message; Python uses fromUsacParams. */
+    explicit Params(const UsacParams& usacParams);
+    /** @brief The same as Params(const UsacParams&), for Python:
+    `cv2.rcme.Params.fromUsacParams(u)` (also `cv2.rcme.Params_fromUsacParams(u)`). */
+    CV_WRAP static Params fromUsacParams(const UsacParams& usacParams);
 
     //! Robust method. Default #METHOD_STANDARD.
     CV_PROP_RW Method method;

@@ -354,13 +354,13 @@ private:
     std::vector<std::string> names_;
 };
 
-//! Params(usacParams): any object with cv2.UsacParams' attributes (duck typing, so that a
-//! cv2.UsacParams from the installed cv2 works without this module depending on cv2).
+//! Params.fromUsacParams(usacParams): any object with cv2.UsacParams' attributes (duck typing, so
+//! that a cv2.UsacParams from the installed cv2 works without this module depending on cv2).
 Params paramsFromUsac(const py::object& u)
 {
     if (!py::hasattr(u, "confidence") || !py::hasattr(u, "maxIterations") ||
         !py::hasattr(u, "threshold"))
-        throw py::type_error("Params(usacParams): usacParams must be a cv2.UsacParams");
+        throw py::type_error("fromUsacParams: usacParams must be a cv2.UsacParams");
     cv::UsacParams usac;
     auto get = [&u](const char* name, auto& field) {
         if (py::hasattr(u, name))
@@ -492,10 +492,12 @@ PYBIND11_MODULE(rcme, m)
     py::class_<Params> params(m, "Params",
                               "Parameters of the robust estimators, shaped like cv2.UsacParams.");
     params.def(py::init<>(), "Params() -> <rcme.Params object>\n.   Every field at its default.");
-    params.def(py::init(&paramsFromUsac), py::arg("usacParams"),
-               "Params(usacParams) -> <rcme.Params object>\n"
-               ".   Carries over confidence, maxIterations, randomGeneratorState, threshold and "
-               "sampler from a cv2.UsacParams.");
+    // A static factory rather than a constructor, as in cv2.rcme: see params.hpp.
+    const char* docFromUsac = "fromUsacParams(usacParams) -> retval\n"
+                              ".   Params with confidence, maxIterations, randomGeneratorState, "
+                              "threshold and sampler carried over from a cv2.UsacParams.";
+    params.def_static("fromUsacParams", &paramsFromUsac, py::arg("usacParams"), docFromUsac);
+    m.def("Params_fromUsacParams", &paramsFromUsac, py::arg("usacParams"), docFromUsac);
     Fields<Params> paramsFields(params);
     paramsFields.enumInt("method", &Params::method, "METHOD_*; default METHOD_STANDARD")
         .enumInt("sampler", &Params::sampler, "SAMPLER_*; default SAMPLER_UNIFORM")

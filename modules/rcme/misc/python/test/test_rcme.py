@@ -195,15 +195,15 @@ class _RcmeSuite:
         u.randomGeneratorState = 7
         u.threshold = 2.5
         u.sampler = cv2.SAMPLING_PROSAC
-        p = self.b.Params(u)
+        p = self.b.Params.fromUsacParams(u)
         self.assertAlmostEqual(p.confidence, 0.95)
         self.assertEqual(p.maxIterations, 321)
         self.assertEqual(p.randomGeneratorState, 7)
         self.assertAlmostEqual(p.threshold, 2.5)
         self.assertEqual(p.sampler, self.b.SAMPLER_PROSAC)
+        self.assertEqual(self.b.Params_fromUsacParams(u).maxIterations, 321)
         u.sampler = cv2.SAMPLING_NAPSAC
-        with self.assertRaises(self.error):
-            self.b.Params(u)
+        self.assertRaisesNaming(["usacParams.sampler"], self.b.Params.fromUsacParams, u)
 
     def test_scene_params_defaults_and_round_trip(self):
         b = self.b
