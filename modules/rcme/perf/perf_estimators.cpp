@@ -62,7 +62,7 @@ BENCHMARK(BM_OpenCVFundamentalRansac)
 namespace opencv_test {
 namespace {
 
-typedef TestBaseWithParam<int> Rcme_Standard;
+typedef perf::TestBaseWithParam<int> Rcme_Standard;
 
 PERF_TEST_P(Rcme_Standard, findFundamentalMat, ::testing::Values(100, 500, 2000))
 {

@@ -17,6 +17,26 @@ using namespace cv;
 using namespace testing;
 using std::string;
 using std::vector;
+
+// ts hides these cv:: names inside opencv_test so that tests spell them cv::norm etc. (they
+// collide with test helpers elsewhere); hiding them here too makes the standalone build reject
+// what the in-tree build would.
+#define RCME_TEST_GUARD_SYMBOL(name)                                                               \
+    class required_namespace_specification_here_for_symbol_##name                                  \
+    {                                                                                              \
+    };                                                                                             \
+    using name = required_namespace_specification_here_for_symbol_##name;
+RCME_TEST_GUARD_SYMBOL(norm)
+RCME_TEST_GUARD_SYMBOL(add)
+RCME_TEST_GUARD_SYMBOL(multiply)
+RCME_TEST_GUARD_SYMBOL(divide)
+RCME_TEST_GUARD_SYMBOL(transpose)
+RCME_TEST_GUARD_SYMBOL(copyMakeBorder)
+RCME_TEST_GUARD_SYMBOL(filter2D)
+RCME_TEST_GUARD_SYMBOL(compare)
+RCME_TEST_GUARD_SYMBOL(minMaxIdx)
+RCME_TEST_GUARD_SYMBOL(threshold)
+#undef RCME_TEST_GUARD_SYMBOL
 } // namespace opencv_test
 
 // Same role as ts's CV_TEST_MAIN: reseed cv::theRNG() before each test so failures reproduce.

@@ -77,9 +77,9 @@ TEST(Rcme_Standard, recover_pose_follows_opencv_conventions)
     EXPECT_EQ(R.size(), Size(3, 3));
     EXPECT_EQ(R.type(), CV_64F);
     EXPECT_EQ(t.size(), Size(1, 3));
-    EXPECT_NEAR(norm(t), 1.0, 1e-9);
+    EXPECT_NEAR(cv::norm(t), 1.0, 1e-9);
     EXPECT_NEAR(determinant(R), 1.0, 1e-9);
-    EXPECT_LT(norm(R.t() * R - Mat::eye(3, 3, CV_64F)), 1e-9);
+    EXPECT_LT(cv::norm(R.t() * R - Mat::eye(3, 3, CV_64F)), 1e-9);
     EXPECT_EQ(mask.type(), CV_8U);
     EXPECT_EQ(mask.rows, scene.points1.rows);
     EXPECT_EQ(mask.cols, 1);
@@ -87,14 +87,14 @@ TEST(Rcme_Standard, recover_pose_follows_opencv_conventions)
     // E = [t]x R and cv::recoverPose agrees with our R, t from our E and mask.
     Mat tx = (Mat_<double>(3, 3) << 0, -t.at<double>(2), t.at<double>(1), t.at<double>(2), 0,
               -t.at<double>(0), -t.at<double>(1), t.at<double>(0), 0);
-    EXPECT_LT(norm(E - tx * R), 1e-9);
+    EXPECT_LT(cv::norm(E - tx * R), 1e-9);
     Mat Rcv, tcv, maskCv = mask.clone();
     cv::recoverPose(E, scene.points1, scene.points2, scene.cameraMatrix, Rcv, tcv, maskCv);
-    EXPECT_LT(norm(Rcv - R), 1e-6);
-    EXPECT_LT(norm(tcv - t), 1e-6);
+    EXPECT_LT(cv::norm(Rcv - R), 1e-6);
+    EXPECT_LT(cv::norm(tcv - t), 1e-6);
     // The refined motion comes with its covariance, symmetric positive definite.
     ASSERT_EQ(covariance.size(), Size(5, 5));
-    EXPECT_LT(norm(covariance - covariance.t()), 1e-12 * norm(covariance));
+    EXPECT_LT(cv::norm(covariance - covariance.t()), 1e-12 * cv::norm(covariance));
     Mat eigenvalues;
     eigen(covariance, eigenvalues);
     EXPECT_GT(eigenvalues.at<double>(4), 0.0);
@@ -108,7 +108,7 @@ TEST(Rcme_Standard, finds_the_true_inliers)
     const Mat F = findFundamentalMat(scene.points1, scene.points2, standardParams(), mask, status);
     ASSERT_EQ(status, STATUS_SUCCESS);
     ASSERT_EQ(F.size(), Size(3, 3));
-    EXPECT_NEAR(norm(F), 1.0, 1e-9);
+    EXPECT_NEAR(cv::norm(F), 1.0, 1e-9);
     int truePositive = 0, falsePositive = 0;
     for (int i = 0; i < mask.rows; ++i) {
         truePositive += mask.at<uchar>(i) && scene.inlierMask.at<uchar>(i);
@@ -132,11 +132,11 @@ TEST(Rcme_Standard, same_seed_same_result_and_seed_matters)
     const Report a = estimateRelativeMotion(scene.points1, scene.points2, noArray(), params);
     const Report b = estimateRelativeMotion(scene.points1, scene.points2, noArray(), params);
     ASSERT_EQ(a.status, STATUS_SUCCESS);
-    EXPECT_EQ(norm(a.F, b.F, NORM_INF), 0.0);
-    EXPECT_EQ(norm(a.mask, b.mask, NORM_INF), 0.0);
+    EXPECT_EQ(cv::norm(a.F, b.F, NORM_INF), 0.0);
+    EXPECT_EQ(cv::norm(a.mask, b.mask, NORM_INF), 0.0);
     params.randomGeneratorState = 43;
     const Report c = estimateRelativeMotion(scene.points1, scene.points2, noArray(), params);
-    EXPECT_GT(norm(a.F, c.F, NORM_INF), 0.0);
+    EXPECT_GT(cv::norm(a.F, c.F, NORM_INF), 0.0);
 }
 
 TEST(Rcme_Standard, exact_iterations_mode_runs_exactly_n)
@@ -171,8 +171,8 @@ TEST(Rcme_Standard, report_holds_everything)
     // F is consistent with K and E.
     const Mat K = scene.cameraMatrix, Kinv = K.inv();
     Mat F = Kinv.t() * r.E * Kinv;
-    F /= norm(F);
-    EXPECT_LT(std::min(norm(F - r.F), norm(F + r.F)), 1e-9);
+    F /= cv::norm(F);
+    EXPECT_LT(std::min(cv::norm(F - r.F), cv::norm(F + r.F)), 1e-9);
 }
 
 TEST(Rcme_Standard, calibrated_fundamental_has_equal_singular_values)
@@ -210,8 +210,8 @@ TEST(Rcme_Standard, threads_give_the_serial_results)
         thread.join();
     for (int i = 0; i < 4; ++i) {
         ASSERT_EQ(parallel[i].status, serial[i].status);
-        EXPECT_EQ(norm(parallel[i].R, serial[i].R, NORM_INF), 0.0);
-        EXPECT_EQ(norm(parallel[i].mask, serial[i].mask, NORM_INF), 0.0);
+        EXPECT_EQ(cv::norm(parallel[i].R, serial[i].R, NORM_INF), 0.0);
+        EXPECT_EQ(cv::norm(parallel[i].mask, serial[i].mask, NORM_INF), 0.0);
     }
 }
 
@@ -235,22 +235,23 @@ TEST(Rcme_Standard, accepts_opencv_point_layouts)
     const Mat nx1 = Mat(v1).clone(), nx1b = Mat(v2).clone();            // Nx1 CV_64FC2
     const Mat oneByN = nx1.reshape(2, 1), oneByNb = nx1b.reshape(2, 1); // 1xN CV_64FC2
     Mat mask;
-    EXPECT_EQ(norm(findFundamentalMat(v1, v2, params, mask, status), F, NORM_INF), 0.0);
-    EXPECT_EQ(norm(findFundamentalMat(nx1, nx1b, params, mask, status), F, NORM_INF), 0.0);
-    EXPECT_EQ(norm(findFundamentalMat(oneByN, oneByNb, params, mask, status), F, NORM_INF), 0.0);
+    EXPECT_EQ(cv::norm(findFundamentalMat(v1, v2, params, mask, status), F, NORM_INF), 0.0);
+    EXPECT_EQ(cv::norm(findFundamentalMat(nx1, nx1b, params, mask, status), F, NORM_INF), 0.0);
+    EXPECT_EQ(cv::norm(findFundamentalMat(oneByN, oneByNb, params, mask, status), F, NORM_INF),
+              0.0);
     EXPECT_EQ(mask.size(), Size(1, scene.points1.rows)); // Nx1 whatever the input layout
     // Non-continuous views (columns of a wider matrix) give the same estimate.
     Mat both;
     hconcat(scene.points1, scene.points2, both);
     EXPECT_FALSE(both.colRange(0, 2).isContinuous());
     EXPECT_EQ(
-        norm(findFundamentalMat(both.colRange(0, 2), both.colRange(2, 4), params, mask, status), F,
-             NORM_INF),
+        cv::norm(findFundamentalMat(both.colRange(0, 2), both.colRange(2, 4), params, mask, status),
+                 F, NORM_INF),
         0.0);
     // Float input: the same estimate up to float rounding.
     const Mat Ff = findFundamentalMat(f1, f2, params, mask, status);
     ASSERT_EQ(status, STATUS_SUCCESS);
-    EXPECT_LT(std::min(norm(Ff - F), norm(Ff + F)), 1e-3);
+    EXPECT_LT(std::min(cv::norm(Ff - F), cv::norm(Ff + F)), 1e-3);
 }
 
 TEST(Rcme_Standard, drop_in_signatures_match_opencv_usage)

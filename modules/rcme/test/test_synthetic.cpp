@@ -267,7 +267,8 @@ TEST(Rcme_Synthetic, all_points_inside_the_images)
                 for (int i = 0; i < pts->rows; ++i) {
                     const double u = pts->at<double>(i, 0), v = pts->at<double>(i, 1);
                     ASSERT_TRUE(u >= 0 && u < 320 && v >= 0 && v < 200)
-                        << kind << " seed " << seed << " point " << i << ": " << u << ", " << v;
+                        << static_cast<int>(kind) << " seed " << seed << " point " << i << ": " << u
+                        << ", " << v;
                 }
         }
 }
@@ -298,14 +299,16 @@ TEST(Rcme_Synthetic, noise_free_inliers_satisfy_the_epipolar_constraint)
                 const double algebraic = std::abs(x2.dot(s.F * x1));
                 const double d = sampson(s.F, s.points1, s.points2, i);
                 if (s.inlierMask.at<uchar>(i)) {
-                    EXPECT_LT(algebraic, 1e-10) << kind << " seed " << seed << " point " << i;
-                    EXPECT_LT(d, 1e-7) << kind << " seed " << seed << " point " << i;
+                    EXPECT_LT(algebraic, 1e-10)
+                        << static_cast<int>(kind) << " seed " << seed << " point " << i;
+                    EXPECT_LT(d, 1e-7)
+                        << static_cast<int>(kind) << " seed " << seed << " point " << i;
                 } else {
                     ++outliers;
                     farOutliers += d > 2.0;
                 }
             }
-            EXPECT_GT(farOutliers, 0.85 * outliers) << kind << " seed " << seed;
+            EXPECT_GT(farOutliers, 0.85 * outliers) << static_cast<int>(kind) << " seed " << seed;
         }
 }
 
@@ -320,7 +323,7 @@ TEST(Rcme_Synthetic, noisy_inlier_residuals_match_sigma)
             sum2 += d * d;
         }
         // The Sampson distance of 4-D noise with per-coordinate sigma has standard deviation sigma.
-        EXPECT_NEAR(sigma, std::sqrt(sum2 / s.points1.rows), 0.1 * sigma) << kind;
+        EXPECT_NEAR(sigma, std::sqrt(sum2 / s.points1.rows), 0.1 * sigma) << static_cast<int>(kind);
     }
 }
 
@@ -338,11 +341,11 @@ TEST(Rcme_Synthetic, ground_truth_is_consistent)
 
             EXPECT_LT(maxAbsDiff(s.R.t() * s.R, Mat::eye(3, 3, CV_64F)), 1e-12);
             EXPECT_NEAR(1.0, determinant(s.R), 1e-12);
-            EXPECT_NEAR(1.0, norm(s.t), 1e-12);
+            EXPECT_NEAR(1.0, cv::norm(s.t), 1e-12);
             EXPECT_LT(maxAbsDiff(s.E, skew(s.t) * s.R), 1e-12);
 
             Mat expectedF = K.inv().t() * s.E * K.inv();
-            expectedF /= norm(expectedF);
+            expectedF /= cv::norm(expectedF);
             double minVal, maxVal;
             minMaxLoc(s.F, &minVal, &maxVal);
             // Sign convention: the entry of largest magnitude is positive.
@@ -350,7 +353,7 @@ TEST(Rcme_Synthetic, ground_truth_is_consistent)
             if (expectedF.dot(s.F) < 0)
                 expectedF = -expectedF;
             EXPECT_LT(maxAbsDiff(expectedF, s.F), 1e-12);
-            EXPECT_NEAR(1.0, norm(s.F), 1e-12);
+            EXPECT_NEAR(1.0, cv::norm(s.F), 1e-12);
         }
 }
 
@@ -376,10 +379,10 @@ TEST(Rcme_Synthetic, noise_free_inliers_are_in_front_of_both_cameras)
                 }
             Mat R, t;
             const int good = cv::recoverPose(s.E, in1, in2, s.cameraMatrix, R, t);
-            EXPECT_GT(good, 150) << kind << " seed " << seed;
+            EXPECT_GT(good, 150) << static_cast<int>(kind) << " seed " << seed;
             const MotionError err = compareMotion(R, t, s.R, s.t);
-            EXPECT_LT(err.rotationDeg, 1e-6) << kind << " seed " << seed;
-            EXPECT_LT(err.translationDeg, 1e-6) << kind << " seed " << seed;
+            EXPECT_LT(err.rotationDeg, 1e-6) << static_cast<int>(kind) << " seed " << seed;
+            EXPECT_LT(err.translationDeg, 1e-6) << static_cast<int>(kind) << " seed " << seed;
         }
 }
 
@@ -396,7 +399,7 @@ std::vector<Vec4d> extractPlanes(std::vector<Point3d> pts, double tol, size_t mi
             const Point3d b = pts[rng.uniform(0, (int)pts.size())];
             const Point3d c = pts[rng.uniform(0, (int)pts.size())];
             Point3d nrm = (b - a).cross(c - a);
-            const double len = norm(nrm);
+            const double len = cv::norm(nrm);
             if (len < 1e-6)
                 continue;
             nrm *= 1.0 / len;

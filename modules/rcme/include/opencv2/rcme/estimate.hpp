@@ -61,10 +61,11 @@ CV_EXPORTS_W Mat findFundamentalMat(InputArray points1, InputArray points2, int 
                                     double ransacReprojThreshold, double confidence, int maxIters,
                                     OutputArray mask = noArray());
 
-//! @overload (not wrapped for Python, as in calib3d, where it would shadow the one above)
-CV_EXPORTS Mat findFundamentalMat(InputArray points1, InputArray points2, int method = FM_RANSAC,
-                                  double ransacReprojThreshold = 3., double confidence = 0.99,
-                                  OutputArray mask = noArray());
+/** @overload As in calib3d, callable from Python as findFundamentalMat(points1, points2[, method
+[, ransacReprojThreshold[, confidence[, mask]]]]); the overloads above are tried first. */
+CV_EXPORTS_W Mat findFundamentalMat(InputArray points1, InputArray points2, int method = FM_RANSAC,
+                                    double ransacReprojThreshold = 3., double confidence = 0.99,
+                                    OutputArray mask = noArray());
 
 /** @brief Essential matrix with an explicit status.
 

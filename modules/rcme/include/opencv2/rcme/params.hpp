@@ -146,7 +146,10 @@ struct CV_EXPORTS_W_SIMPLE Report
     CV_PROP_RW double timeSeconds; //!< wall time of the call
 };
 
-//! @brief A short English name of a #Status value, e.g. "poor quality input".
+/** @brief A short English name of a #Status value, e.g. "poor quality input".
+
+(A block comment on purpose: OpenCV's Python generator takes the last block comment before a
+wrapped declaration as its docstring, and would otherwise reuse Report's.) */
 CV_EXPORTS_W String statusToString(Status status);
 
 //! @}

@@ -399,6 +399,10 @@ const char* const kDocFindFundamentalDropIn =
     "findFundamentalMat(points1, points2, method, ransacReprojThreshold, confidence, maxIters"
     "[, mask]) -> retval, mask\n"
     ".   @brief Drop-in for cv2.findFundamentalMat; method is cv2.FM_RANSAC or a METHOD_* value.";
+const char* const kDocFindFundamentalDropInDefaults =
+    "findFundamentalMat(points1, points2[, method[, ransacReprojThreshold[, confidence[, mask]]]])"
+    " -> retval, mask\n"
+    ".   @brief Drop-in for cv2.findFundamentalMat with its defaults (FM_RANSAC, 3 px, 0.99).";
 const char* const kDocFindEssentialParams =
     "findEssentialMat(points1, points2, cameraMatrix, params[, mask]) -> retval, mask, status\n"
     ".   @brief Essential matrix with an explicit status.";
@@ -436,6 +440,23 @@ const char* const kDocStatusToString =
     ".   @brief A short English name of a STATUS_* value, e.g. \"poor quality input\".";
 
 } // namespace
+
+// Runs a drop-in findFundamentalMat overload, which returns F (empty on failure) and writes the
+// mask; returns (F or None, mask) as cv2 does.
+template <class Call>
+py::tuple runFundamentalDropIn(py::object points1, py::object points2, py::object mask, Call call)
+{
+    const char* f = "findFundamentalMat";
+    InMat p1 = toMat(points1, "points1", Conv::Float, f);
+    InMat p2 = toMat(points2, "points2", Conv::Float, f);
+    OutMat outMask = toOutMat(mask);
+    cv::Mat F;
+    {
+        py::gil_scoped_release nogil;
+        F = call(p1.mat, p2.mat, outMask.mat);
+    }
+    return py::make_tuple(fromMat(F), finishOut(outMask));
+}
 
 PYBIND11_MODULE(rcme, m)
 {
@@ -632,21 +653,28 @@ PYBIND11_MODULE(rcme, m)
         "findFundamentalMat",
         [](py::object points1, py::object points2, int method, double ransacReprojThreshold,
            double confidence, int maxIters, py::object mask) {
-            const char* f = "findFundamentalMat";
-            InMat p1 = toMat(points1, "points1", Conv::Float, f);
-            InMat p2 = toMat(points2, "points2", Conv::Float, f);
-            OutMat outMask = toOutMat(mask);
-            cv::Mat F;
-            {
-                py::gil_scoped_release nogil;
-                F = cv::rcme::findFundamentalMat(p1.mat, p2.mat, method, ransacReprojThreshold,
-                                                 confidence, maxIters, outMask.mat);
-            }
-            return py::make_tuple(fromMat(F), finishOut(outMask));
+            return runFundamentalDropIn(
+                points1, points2, mask, [&](cv::Mat& a, cv::Mat& b, cv::Mat& m) {
+                    return cv::rcme::findFundamentalMat(a, b, method, ransacReprojThreshold,
+                                                        confidence, maxIters, m);
+                });
         },
         py::arg("points1"), py::arg("points2"), py::arg("method"), py::arg("ransacReprojThreshold"),
         py::arg("confidence"), py::arg("maxIters"), py::arg("mask") = py::none(),
         kDocFindFundamentalDropIn);
+    m.def(
+        "findFundamentalMat",
+        [](py::object points1, py::object points2, int method, double ransacReprojThreshold,
+           double confidence, py::object mask) {
+            return runFundamentalDropIn(points1, points2, mask,
+                                        [&](cv::Mat& a, cv::Mat& b, cv::Mat& m) {
+                                            return cv::rcme::findFundamentalMat(
+                                                a, b, method, ransacReprojThreshold, confidence, m);
+                                        });
+        },
+        py::arg("points1"), py::arg("points2"), py::arg("method") = static_cast<int>(cv::FM_RANSAC),
+        py::arg("ransacReprojThreshold") = 3.0, py::arg("confidence") = 0.99,
+        py::arg("mask") = py::none(), kDocFindFundamentalDropInDefaults);
 
     m.def(
         "findEssentialMat",

@@ -339,6 +339,13 @@ class _RcmeSuite:
                                          ransacReprojThreshold=3.0, confidence=0.99,
                                          maxIters=2000)
         np.testing.assert_array_equal(F2, F)  # the drop-in is deterministic
+        # OpenCV's defaulted form: (points1, points2[, method[, threshold[, confidence[, mask]]]]).
+        for args in ((), (FM_RANSAC,), (FM_RANSAC, 3.0, 0.99)):
+            F3, mask3 = b.findFundamentalMat(s.points1, s.points2, *args)
+            self.assertEqual(F3.shape, (3, 3))
+            self.assertValidMask(mask3, n)
+            np.testing.assert_array_equal(F3, b.findFundamentalMat(s.points1, s.points2, FM_RANSAC,
+                                                                   3.0, 0.99, 1000)[0])
         np.testing.assert_array_equal(mask2, mask)
         self.assertRaisesNaming(["method"], b.findFundamentalMat, s.points1, s.points2,
                                 FM_LMEDS, 3.0, 0.99, 2000)
@@ -614,7 +621,8 @@ class _RcmeSuite:
         with self.assertRaises((self.error, TypeError)):
             b.findFundamentalMat("not points", p2, p)
         with self.assertRaises((self.error, TypeError)):
-            b.findFundamentalMat(p1, p2)  # the 5-argument C++ overload is not wrapped
+            b.findFundamentalMat(p1, p2, "not a method")  # no overload takes a string
+        self.assertRaisesNaming(["method"], b.findFundamentalMat, p1, p2, 4)  # cv2.FM_LMEDS
         sp = b.SceneParams()
         sp.inlierRatio = 2.0
         self.assertRaisesNaming(["inlierRatio"], b.generateScene, sp)
