@@ -9,6 +9,7 @@
 #include "framework/estimator_factory.hpp"
 #include "framework/ransac_loop.hpp"
 #include "geometry/epipolar.hpp"
+#include "geometry/motion_parameterization.hpp"
 
 #include <opencv2/core/eigen.hpp>
 
@@ -68,8 +69,8 @@ Estimation estimate(InputArray points1, InputArray points2, InputArray cameraMat
                 report.E = toMat(detail::skew(model.t) * model.R);
                 report.R = toMat(model.R);
                 report.t = toMat(model.t);
-                if (model.hasCovariance)
-                    report.covariance = toMat(model.covariance);
+                if (model.uncertaintyDof == detail::MotionTangent::kDof)
+                    report.covariance = toMat(model.covariance.topLeftCorner<5, 5>());
             }
         } else {
             report.F = toMat(model.F);

@@ -4,8 +4,8 @@
 // Box 4 of Fig. 1, model refinement: the Gold Standard maximum-likelihood estimate on the inliers
 // (Hartley & Zisserman, alg. 11.3) in its first-order form, Levenberg-Marquardt on the Sampson
 // distances over a minimal parameterization of the model as it is: the 5-DoF motion when it has
-// one, the 7-DoF F otherwise. For a motion, the Gauss-Newton matrix at the optimum also gives its
-// covariance, sigma^2 (J^T J)^-1.
+// one, the 7-DoF F otherwise. The Gauss-Newton matrix at the optimum also gives the model's
+// first-order covariance, sigma^2 (J^T J)^-1 (on a minimal sample: the paper's Sigma_p).
 
 #include "framework/components.hpp"
 #include "geometry/epipolar.hpp"
@@ -148,6 +148,65 @@ double levenbergMarquardt(const TwoViewData& data, const std::vector<int>& inlie
     return cost;
 }
 
+// sigma^2 (J^T J)^-1 at the problem's state, with the directions it refers to. None when J^T J is
+// ill-conditioned: the points do not determine the model (e.g. a degenerate minimal sample).
+template <class Problem>
+void setUncertainty(const TwoViewData& data, const std::vector<int>& indices,
+                    const Problem& problem, Model& model)
+{
+    constexpr int P = Problem::kDof;
+    constexpr double kConditionLimit = 1e-10;
+    Eigen::Matrix<double, P, P> JtJ;
+    Eigen::Matrix<double, P, 1> Jtr;
+    normalEquations(data, indices, problem, JtJ, Jtr);
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, P, P>> eig(JtJ);
+    model.uncertaintyDof = 0;
+    if (!(eig.eigenvalues()(0) > kConditionLimit * eig.eigenvalues()(P - 1)))
+        return;
+    model.uncertaintyDof = P;
+    model.covariance.setZero();
+    model.covariance.template topLeftCorner<P, P>() =
+        data.sigma * data.sigma * eig.eigenvectors() *
+        eig.eigenvalues().cwiseInverse().asDiagonal() * eig.eigenvectors().transpose();
+    problem.derivatives(model.directions);
+}
+
+} // namespace
+
+bool fitModelOn(const TwoViewData& data, const std::vector<int>& indices, int maxIterations,
+                Model& model)
+{
+    if (model.hasMotion) {
+        CV_Assert(data.calibrated);
+        if (indices.size() <= static_cast<size_t>(MotionProblem::kDof))
+            return false;
+        MotionProblem problem{data.Kinv, model.R, model.t, model.R, model.t};
+        levenbergMarquardt(data, indices, problem, maxIterations);
+        model.R = problem.R;
+        model.t = problem.t;
+        model.E = skew(model.t) * model.R;
+        model.F = fundamentalFromEssential(model.E, data.Kinv);
+        setUncertainty(data, indices, problem, model);
+        return model.F.allFinite();
+    }
+    // A 7-DoF F needs more than 7 constraints to be fitted at all.
+    if (indices.size() <= static_cast<size_t>(FundamentalProblem::kDof))
+        return false;
+    FundamentalProblem problem;
+    if (!normalizingTransform(data.points1, indices, problem.T1) ||
+        !normalizingTransform(data.points2, indices, problem.T2))
+        return false;
+    problem.Fn =
+        FundamentalTangent(problem.T2.transpose().inverse() * model.F * problem.T1.inverse())
+            .compose();
+    levenbergMarquardt(data, indices, problem, maxIterations);
+    model.F = normalizeFundamental(problem.current());
+    setUncertainty(data, indices, problem, model);
+    return model.F.allFinite();
+}
+
+namespace {
+
 class GoldStandardRefiner final : public Refiner
 {
 public:
@@ -159,46 +218,10 @@ public:
         for (size_t i = 0; i < mask.size(); ++i)
             if (mask[i])
                 inliers.push_back(static_cast<int>(i));
-        if (model.hasMotion)
-            return refineMotion(data, inliers, model);
-        // A 7-DoF F needs more than 7 constraints to be refined at all.
-        if (inliers.size() <= FundamentalProblem::kDof)
-            return false;
-        FundamentalProblem problem;
-        if (!normalizingTransform(data.points1, inliers, problem.T1) ||
-            !normalizingTransform(data.points2, inliers, problem.T2))
-            return false;
-        problem.Fn =
-            FundamentalTangent(problem.T2.transpose().inverse() * model.F * problem.T1.inverse())
-                .compose();
-        levenbergMarquardt(data, inliers, problem, maxIterations_);
-        model.F = normalizeFundamental(problem.current());
-        return model.F.allFinite();
+        return fitModelOn(data, inliers, maxIterations_, model);
     }
 
 private:
-    bool refineMotion(const TwoViewData& data, const std::vector<int>& inliers, Model& model) const
-    {
-        CV_Assert(data.calibrated);
-        if (inliers.size() <= MotionProblem::kDof)
-            return false;
-        MotionProblem problem{data.Kinv, model.R, model.t, model.R, model.t};
-        levenbergMarquardt(data, inliers, problem, maxIterations_);
-        model.R = problem.R;
-        model.t = problem.t;
-        model.E = skew(model.t) * model.R;
-        model.F = fundamentalFromEssential(model.E, data.Kinv);
-
-        Eigen::Matrix<double, 5, 5> JtJ;
-        Eigen::Matrix<double, 5, 1> Jtr;
-        normalEquations(data, inliers, problem, JtJ, Jtr);
-        const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 5, 5>> eig(JtJ);
-        model.hasCovariance = eig.eigenvalues()(0) > 1e-12 * eig.eigenvalues()(4);
-        if (model.hasCovariance)
-            model.covariance = data.sigma * data.sigma * JtJ.inverse();
-        return model.F.allFinite();
-    }
-
     int maxIterations_;
 };
 

@@ -26,9 +26,13 @@ struct Model
     bool hasMotion = false;
     Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
     Eigen::Vector3d t = Eigen::Vector3d::Zero();
-    //! 5x5 covariance of the motion in its tangent space, valid when hasCovariance.
-    bool hasCovariance = false;
-    Eigen::Matrix<double, 5, 5> covariance = Eigen::Matrix<double, 5, 5>::Zero();
+    /** First-order uncertainty of the model: the covariance of its uncertaintyDof parameters
+    theta (0: unknown; 5: the motion's tangent space, see MotionTangent; 7: F's, see
+    FundamentalTangent) and the directions dF/dtheta_k in pixels, so that a residual's variance
+    can be propagated without knowing the parameterization. Top-left block used. */
+    int uncertaintyDof = 0;
+    Eigen::Matrix<double, 7, 7> covariance = Eigen::Matrix<double, 7, 7>::Zero();
+    Eigen::Matrix3d directions[7];
 };
 
 /** Gives a model of calibrated data its motion: E (from F when the hypothesis was not
@@ -138,6 +142,12 @@ std::unique_ptr<Termination> createAdaptiveTermination(double confidence, int ma
                                                        int sampleSize);
 std::unique_ptr<Termination> createExactTermination(int iterations);
 std::unique_ptr<Refiner> createGoldStandardRefiner(int maxIterations);
+
+/** Gold Standard fit of `model` (motion if it has one, else F) on the points `indices`, with the
+first-order covariance of the result (Model::uncertaintyDof and friends; left at 0 when the
+information matrix is ill-conditioned). False when there are too few points to fit. */
+bool fitModelOn(const TwoViewData& data, const std::vector<int>& indices, int maxIterations,
+                Model& model);
 
 } // namespace detail
 } // namespace rcme
