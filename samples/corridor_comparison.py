@@ -1,11 +1,11 @@
 #!/usr/bin/python3
-"""rcme's Standard estimator next to OpenCV's findFundamentalMat (FM_RANSAC) on the paper's
-corridor scenes (Table I setting): the same correspondences, the same exactly-N iterations.
+"""rcme's methods next to OpenCV's findFundamentalMat (FM_RANSAC) on the paper's corridor scenes
+(Table I setting): the same correspondences, the same exactly-N iterations.
 
-Both F estimates become motions the same way (E = K^T F K, cv2.recoverPose); rcme is also run
-calibrated (rcme.recoverPose, which refines the motion). Errors: the paper's dq and dt, and the
-rotation / translation-direction angles in degrees. A failure is a non-success status (rcme) or
-an empty F (OpenCV).
+F estimates become motions the same way (E = K^T F K, cv2.recoverPose); rcme is also run
+calibrated (rcme.recoverPose: Standard, RCME, pRCME). Errors: the paper's dq and dt, and the
+rotation / translation-direction angles in degrees. A failure is a non-success status (rcme: PQI
+or degenerate) or an empty F (OpenCV); the means are over the successes.
 
     PYTHONPATH=build/python /usr/bin/python3 samples/corridor_comparison.py --seeds 200
 """
@@ -45,8 +45,11 @@ def main():
     args = ap.parse_args()
 
     threshold = 1.959963984540054 * args.sigma
-    runs = {"rcme Standard, F": ([], 0, []), "rcme Standard, recoverPose": ([], 0, []),
-            "OpenCV FM_RANSAC, F": ([], 0, [])}
+    calibrated = {"rcme Standard, recoverPose": rcme.METHOD_STANDARD,
+                  "rcme RCME, recoverPose": rcme.METHOD_RCME,
+                  "rcme pRCME, recoverPose": rcme.METHOD_PRCME}
+    runs = {name: ([], 0, []) for name in
+            ["rcme Standard, F"] + list(calibrated) + ["OpenCV FM_RANSAC, F"]}
 
     def record(name, R, t, scene, seconds):
         errors, failures, times = runs[name]
@@ -78,11 +81,12 @@ def main():
         record("rcme Standard, F", *(motion_from_f(F, K, p1, p2) if ok else (None, None)), s,
                seconds)
 
-        start = time.perf_counter()
-        _, _, R, t, _, status, _ = rcme.recoverPose(p1, p2, K, params)
-        seconds = time.perf_counter() - start
-        ok = status == rcme.STATUS_SUCCESS
-        record("rcme Standard, recoverPose", R if ok else None, t, s, seconds)
+        for name, method in calibrated.items():
+            params.method = method
+            start = time.perf_counter()
+            _, _, R, t, _, status, _ = rcme.recoverPose(p1, p2, K, params)
+            seconds = time.perf_counter() - start
+            record(name, R if status == rcme.STATUS_SUCCESS else None, t, s, seconds)
 
         # confidence ~1 keeps OpenCV's adaptive bound at maxIters: exactly N iterations too.
         cv2.setRNGSeed(seed)

@@ -1,8 +1,9 @@
 // This file is part of the rcme module. It is subject to the license terms in the LICENSE file
 // found in the top-level directory of this distribution.
 
-// Box "termination" of Fig. 1(a): the usual adaptive bound N = log(1 - p) / log(1 - w^m) from
-// the best inlier ratio w so far, or exactly N iterations as in the paper's experiments.
+// Box "termination" of Fig. 1: the usual adaptive bound N = log(1 - p) / log(1 - w^m) from the
+// best inlier ratio w so far, or exactly N iterations as in the paper's experiments; and RCME's
+// early termination (Sec. IV-D.2): stop once a candidate's mean entropy is below a preset bound.
 
 #include "framework/components.hpp"
 
@@ -56,7 +57,35 @@ private:
     int iterations_;
 };
 
+class EntropyTermination final : public Termination
+{
+public:
+    EntropyTermination(std::unique_ptr<Termination> bound, double entropyBound)
+        : bound_(std::move(bound)), entropyBound_(entropyBound)
+    {
+    }
+
+    int iterationBound() const override { return satisfied_ ? 0 : bound_->iterationBound(); }
+
+    void update(const Score& best, int pointCount) override
+    {
+        bound_->update(best, pointCount);
+        satisfied_ = satisfied_ || (entropyBound_ > 0 && best.meanEntropy <= entropyBound_);
+    }
+
+private:
+    std::unique_ptr<Termination> bound_;
+    double entropyBound_;
+    bool satisfied_ = false;
+};
+
 } // namespace
+
+std::unique_ptr<Termination> createEntropyTermination(std::unique_ptr<Termination> bound,
+                                                      double entropyBound)
+{
+    return std::make_unique<EntropyTermination>(std::move(bound), entropyBound);
+}
 
 std::unique_ptr<Termination> createAdaptiveTermination(double confidence, int maxIterations,
                                                        int sampleSize)

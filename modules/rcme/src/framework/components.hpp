@@ -97,6 +97,9 @@ public:
     //! Writes 1 for the inliers of `model`, 0 otherwise; `mask` is resized to data.size().
     virtual void classify(const TwoViewData& data, const Model& model,
                           std::vector<uchar>& mask) = 0;
+    //! Whether a candidate still passes the tests that depend on the whole run so far (RCME's
+    //! size test against the estimated inlier ratio, which only grows).
+    virtual bool isStillCandidate(const Score&) const { return true; }
 };
 
 //! Decides how many iterations to run.
@@ -131,6 +134,15 @@ struct EstimatorComponents
     std::unique_ptr<Refiner> refiner; //!< null when refinement is off
 };
 
+/** The inlier count that chance alone exceeds with probability at most 5 % over a whole run: a
+random correspondence falls within `threshold` (Sampson distance, pixels) of a hypothesis with
+probability p, bounded generously by an epipolar band of half-width sqrt(2) * threshold across
+the diagonal of the points' bounding box in image 2 over its area (the Sampson distance is at
+least the image-2 line distance over sqrt(2)); the bound is the Binomial(n - m, p) quantile at
+0.05 / maxIterations (Bonferroni over the hypotheses), plus the m sample points. A test of
+non-randomness in the spirit of PROSAC's. */
+int minimalSupport(const TwoViewData& data, double threshold, int sampleSize, int maxIterations);
+
 // Factories of the component implementations, one file each under components/.
 std::unique_ptr<Sampler> createUniformSampler(int pointCount, int sampleSize, uint64_t seed);
 //! With `essentialHypotheses` and calibrated data, hypotheses are projected onto the essential
@@ -142,6 +154,17 @@ std::unique_ptr<Termination> createAdaptiveTermination(double confidence, int ma
                                                        int sampleSize);
 std::unique_ptr<Termination> createExactTermination(int iterations);
 std::unique_ptr<Refiner> createGoldStandardRefiner(int maxIterations);
+
+// RCME's boxes (doc/algorithm.md).
+std::unique_ptr<MinimalSolver>
+createUncertainModelInstantiation(std::unique_ptr<MinimalSolver> solver, int fitIterations);
+std::unique_ptr<ModelVerifier> createModelSampleConsistencyTest(double sigma, double alpha,
+                                                                int dof, bool leverage);
+std::unique_ptr<Scorer> createEntropyScorer(const TwoViewData& data, const Params& params,
+                                            int sampleSize);
+//! Stops once the best candidate's mean entropy is at most entropyBound (> 0), else as `bound`.
+std::unique_ptr<Termination> createEntropyTermination(std::unique_ptr<Termination> bound,
+                                                      double entropyBound);
 
 /** Gold Standard fit of `model` (motion if it has one, else F) on the points `indices`, with the
 first-order covariance of the result (Model::uncertaintyDof and friends; left at 0 when the

@@ -13,7 +13,13 @@ namespace detail {
 EstimatorComponents createEstimator(const Params& params, const TwoViewData& data)
 {
     EstimatorComponents c;
-    c.solver = createEightPointSolver(/*essentialHypotheses=*/false);
+    const bool rcme = params.method == METHOD_RCME || params.method == METHOD_PRCME;
+    // RCME needs a motion per hypothesis when K is known (its covariance lives in the motion's
+    // tangent space); Standard scores rank-2 F and makes the motion from the selected model.
+    c.solver = createEightPointSolver(/*essentialHypotheses=*/rcme);
+    if (rcme)
+        c.solver = createUncertainModelInstantiation(std::move(c.solver),
+                                                     params.sampleFitIterations);
     const int m = c.solver->sampleSize();
     if (data.size() >= m)
         c.sampler = createUniformSampler(data.size(), m,
@@ -24,6 +30,17 @@ EstimatorComponents createEstimator(const Params& params, const TwoViewData& dat
     switch (params.method) {
     case METHOD_STANDARD:
         c.scorer = createInlierCountScorer(data, m, params.maxIterations);
+        break;
+    case METHOD_RCME:
+    case METHOD_PRCME:
+        // pRCME is RCME without the consistency test; an exact solver would not need it.
+        if (params.method == METHOD_RCME && c.solver->isOverParameterized())
+            c.verifiers.push_back(createModelSampleConsistencyTest(
+                data.sigma, params.alpha, params.consistencyDof, params.sampleLeverage));
+        c.scorer = createEntropyScorer(data, params, m);
+        if (!params.exactIterations)
+            c.termination = createEntropyTermination(std::move(c.termination),
+                                                     params.earlyTerminationEntropy);
         break;
     default:
         CV_Error(Error::StsNotImplemented, "Params.method: not implemented yet");

@@ -3,6 +3,8 @@
 
 #include "framework/ransac_loop.hpp"
 
+#include "framework/candidate_set.hpp"
+
 namespace cv {
 namespace rcme {
 namespace detail {
@@ -60,7 +62,7 @@ RansacResult runRansac(const TwoViewData& data, EstimatorComponents& c)
     std::vector<int> sample(static_cast<size_t>(m));
     std::vector<Model> models;
     models.reserve(static_cast<size_t>(c.solver->maxSolutions()));
-    bool haveCandidate = false;
+    CandidateSet candidates;
     int iteration = 0;
     for (; iteration < c.termination->iterationBound(); ++iteration) {
         c.sampler->generateSample(iteration, sample);
@@ -72,31 +74,28 @@ RansacResult runRansac(const TwoViewData& data, EstimatorComponents& c)
             if (!passesVerifiers(c, data, sample, model))
                 continue;
             const Score score = c.scorer->score(data, model);
-            if (!score.isCandidate)
+            if (!score.isCandidate || !candidates.add(model, score))
                 continue;
-            // Strictly better only: ties keep the earliest hypothesis, which makes the result
-            // independent of how iterations are scheduled.
-            if (!haveCandidate || score.isBetterThan(result.score)) {
-                haveCandidate = true;
-                result.model = model;
-                result.score = score;
-                c.termination->update(score, n);
-            }
+            if (const CandidateSet::Candidate* best = candidates.best(*c.scorer))
+                c.termination->update(best->score, n);
         }
     }
     result.iterations = iteration;
 
-    if (!haveCandidate) {
+    const CandidateSet::Candidate* best = candidates.best(*c.scorer);
+    if (!best) {
         if (result.degenerateSamples == iteration) {
             result.status = STATUS_DEGENERATE_CONFIGURATION;
             result.message = "every minimal sample was degenerate (identical or collinear points)";
         } else {
             result.status = STATUS_POOR_QUALITY_INPUT;
-            result.message =
-                cv::format("no hypothesis passed the acceptance tests in %d iterations", iteration);
+            result.message = cv::format("no hypothesis passed the acceptance tests in %d iterations",
+                                        iteration);
         }
         return result;
     }
+    result.model = best->model;
+    result.score = best->score;
 
     c.scorer->classify(data, result.model, result.mask);
     refineSelected(data, c, result);

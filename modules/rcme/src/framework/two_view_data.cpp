@@ -111,13 +111,13 @@ void validateParams(const Params& p)
 {
     switch (p.method) {
     case METHOD_STANDARD:
-        break;
     case METHOD_RCME:
     case METHOD_PRCME:
+        break;
     case METHOD_MLESAC:
     case METHOD_COV_RANSAC:
         CV_Error(Error::StsNotImplemented,
-                 "Params.method: this method is not implemented yet; use METHOD_STANDARD");
+                 "Params.method: MLESAC and Cov-RANSAC are not implemented yet");
     default:
         CV_Error(Error::StsBadArg,
                  cv::format("Params.method: unknown value %d", static_cast<int>(p.method)));
@@ -148,6 +148,10 @@ void validateParams(const Params& p)
                "Params.priorInlierRatio must be <= 1 (<= 0: estimated)");
     checkRange(p.consistencyDof >= 1 && p.consistencyDof <= 4,
                "Params.consistencyDof must be in [1, 4]");
+    checkRange(p.sampleFitIterations >= 0 && p.sampleFitIterations <= 100,
+               "Params.sampleFitIterations must be in [0, 100]");
+    checkRange(std::isfinite(p.earlyTerminationEntropy),
+               "Params.earlyTerminationEntropy must be finite (<= 0: off)");
 }
 
 double inlierThreshold(const Params& params)

@@ -118,6 +118,15 @@ struct CV_EXPORTS_W_SIMPLE Params
     CV_PROP_RW double priorInlierRatio;
     //! Degrees of freedom of RCME's chi-square tests on the Sampson error (paper: 3). Default 1.
     CV_PROP_RW int consistencyDof;
+    /** RCME: Gauss-Newton iterations fitting each hypothesis to its own minimal sample before its
+    covariance is computed; 0 keeps the solver's output, as the paper. */
+    CV_PROP_RW int sampleFitIterations;
+    /** RCME's consistency test: give the samples the leverage-corrected variance
+    sigma^2 - g Sigma g^T (they built the model) instead of the paper's sigma^2 + g Sigma g^T. */
+    CV_PROP_RW bool sampleLeverage;
+    /** RCME's early termination: stop once a candidate's mean excess entropy is at most this
+    (nats, as entropyThreshold); <= 0 disables it. Ignored when exactIterations is set. */
+    CV_PROP_RW double earlyTerminationEntropy;
 };
 
 /** @brief Everything an estimation produced, for callers who want more than the model.

@@ -535,7 +535,13 @@ PYBIND11_MODULE(rcme, m)
         .plain("entropyThreshold", &Params::entropyThreshold, "RCME's mu over the noise floor")
         .plain("inlierRatioFactor", &Params::inlierRatioFactor, "RCME's lambda")
         .plain("priorInlierRatio", &Params::priorInlierRatio, "RCME's omega_p; <= 0: estimated")
-        .plain("consistencyDof", &Params::consistencyDof, "dof of RCME's chi-square tests");
+        .plain("consistencyDof", &Params::consistencyDof, "dof of RCME's chi-square tests")
+        .plain("sampleFitIterations", &Params::sampleFitIterations,
+               "RCME: Gauss-Newton iterations on each hypothesis' own sample; default 0")
+        .plain("sampleLeverage", &Params::sampleLeverage,
+               "RCME: leverage-corrected sample variance in the consistency test; default False")
+        .plain("earlyTerminationEntropy", &Params::earlyTerminationEntropy,
+               "RCME: stop once a candidate's mean excess entropy is at most this; <= 0 off");
     paramsFields.addKeywordInit("Params");
     paramsFields.addRepr("Params");
 

@@ -1,0 +1,124 @@
+// This file is part of the rcme module. It is subject to the license terms in the LICENSE file
+// found in the top-level directory of this distribution.
+
+// Boxes 2(a), 2(b) and 3(a) of Fig. 1(b):
+// - 2(a) inliers by propagated uncertainty (eq. 4): d_i^2 / v_i <= F_dof^-1(1 - alpha), v_i the
+//   variance of point i's Sampson distance (noise plus the model's covariance);
+// - 2(b) inlier scoring by differential entropy (eq. 5): on the rank-one support of the Sampson
+//   error vector, h_i = 1/2 log(2 pi e v_i); here as the excess over the noise floor
+//   h_0 = 1/2 log(2 pi e sigma^2), i.e. 1/2 log(v_i / sigma^2), which does not depend on the
+//   image's units;
+// - 3(a) the inlier-set quality test (eq. 6, sign as written): Z = (psi - mu) / (s / sqrt(n_j))
+//   <= Phi^-1(1 - alpha), psi and s the mean and standard deviation of the excess entropies, mu
+//   Params::entropyThreshold; and the size test n_j / n >= lambda * omega_p, omega_p given or the
+//   largest inlier ratio of a quality-passing hypothesis so far.
+// The score is psi: the candidate of least mean entropy is selected (eq. 8).
+
+#include "components/residual_uncertainty.hpp"
+#include "framework/components.hpp"
+#include "geometry/statistics.hpp"
+
+namespace cv {
+namespace rcme {
+namespace detail {
+
+namespace {
+
+class EntropyScorer final : public Scorer
+{
+public:
+    EntropyScorer(const TwoViewData& data, const Params& params, int sampleSize)
+        : sigma_(data.sigma), inlierBound_(chiSquareQuantile(1.0 - params.alpha,
+                                                             params.consistencyDof)),
+          entropyThreshold_(params.entropyThreshold),
+          zCritical_(normalQuantile(1.0 - params.alpha)),
+          lambda_(params.inlierRatioFactor), priorInlierRatio_(params.priorInlierRatio),
+          pointCount_(data.size())
+    {
+        // Chance support at the inlier band of a perfectly known model (v = sigma^2).
+        minimalSupport_ = minimalSupport(data, std::sqrt(inlierBound_) * sigma_, sampleSize,
+                                         params.maxIterations);
+    }
+
+    Score score(const TwoViewData& data, const Model& model) override
+    {
+        Score score;
+        if (model.uncertaintyDof == 0)
+            return score;
+        const ResidualUncertainty uncertainty(model, sigma_);
+        const double sigmaSquared = sigma_ * sigma_;
+        int count = 0;
+        double sum = 0, sumSquares = 0;
+        for (size_t i = 0; i < data.points1.size(); ++i) {
+            double distanceSquared = 0, variance = 0;
+            uncertainty.evaluate(data.points1[i], data.points2[i], false, distanceSquared,
+                                 variance);
+            if (!(distanceSquared <= inlierBound_ * variance))
+                continue;
+            const double excessEntropy = 0.5 * std::log(variance / sigmaSquared);
+            ++count;
+            sum += excessEntropy;
+            sumSquares += excessEntropy * excessEntropy;
+        }
+        score.inlierCount = count;
+        if (count < 2)
+            return score;
+        const double psi = sum / count;
+        const double deviation =
+            std::sqrt(std::max(0.0, (sumSquares - count * psi * psi) / (count - 1)));
+        score.value = psi;
+        score.meanEntropy = psi;
+        // With no spread the test degenerates to comparing psi with mu.
+        const double z = deviation > 0 ? (psi - entropyThreshold_) / (deviation / std::sqrt(count))
+                                       : (psi > entropyThreshold_ ? HUGE_VAL : -HUGE_VAL);
+        const bool quality = z <= zCritical_;
+        const double ratio = static_cast<double>(count) / pointCount_;
+        if (quality)
+            bestQualityRatio_ = std::max(bestQualityRatio_, ratio);
+        score.isCandidate = quality && count >= minimalSupport_ && isStillCandidate(score);
+        return score;
+    }
+
+    bool isStillCandidate(const Score& score) const override
+    {
+        const double omega = priorInlierRatio_ > 0 ? priorInlierRatio_ : bestQualityRatio_;
+        return static_cast<double>(score.inlierCount) / pointCount_ >= lambda_ * omega;
+    }
+
+    void classify(const TwoViewData& data, const Model& model, std::vector<uchar>& mask) override
+    {
+        mask.assign(data.points1.size(), 0);
+        if (model.uncertaintyDof == 0)
+            return;
+        const ResidualUncertainty uncertainty(model, sigma_);
+        for (size_t i = 0; i < mask.size(); ++i) {
+            double distanceSquared = 0, variance = 0;
+            uncertainty.evaluate(data.points1[i], data.points2[i], false, distanceSquared,
+                                 variance);
+            mask[i] = distanceSquared <= inlierBound_ * variance;
+        }
+    }
+
+private:
+    double sigma_;
+    double inlierBound_;
+    double entropyThreshold_;
+    double zCritical_;
+    double lambda_;
+    double priorInlierRatio_;
+    int pointCount_;
+    int minimalSupport_ = 0;
+    double bestQualityRatio_ = 0; //!< omega_p estimated during the run
+};
+
+} // namespace
+
+std::unique_ptr<Scorer> createEntropyScorer(const TwoViewData& data, const Params& params,
+                                            int sampleSize)
+{
+    return std::make_unique<EntropyScorer>(data, params, sampleSize);
+}
+
+} // namespace detail
+} // namespace rcme
+} // namespace cv

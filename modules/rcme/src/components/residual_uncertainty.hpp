@@ -1,0 +1,43 @@
+// This file is part of the rcme module. It is subject to the license terms in the LICENSE file
+// found in the top-level directory of this distribution.
+
+#ifndef OPENCV_RCME_COMPONENTS_RESIDUAL_UNCERTAINTY_HPP
+#define OPENCV_RCME_COMPONENTS_RESIDUAL_UNCERTAINTY_HPP
+
+#include "framework/components.hpp"
+
+namespace cv {
+namespace rcme {
+namespace detail {
+
+/** A model's first-order uncertainty propagated to the Sampson distance of a correspondence
+(doc/algorithm.md, "Inliers by propagated uncertainty"). With r = x2^T F x1, J = dr/d(x1, x2),
+the Sampson distance is d = r / |J|, and to first order its variance is
+
+    v = sigma^2 + s * a^T M a / |J|^2,   a = vec(x2 x1^T),   M = D Sigma D^T,
+
+D holding the model's directions dF/dtheta_k as columns and Sigma their covariance: the noise of
+the point plus the model's own uncertainty (s = +1, the paper's choice), or minus it for a point
+that built the model (s = -1, its leverage). The Sampson error vector is rank one, so this scalar
+variance is all of its covariance on its support. */
+class ResidualUncertainty
+{
+public:
+    //! `model.uncertaintyDof` must be > 0.
+    ResidualUncertainty(const Model& model, double sigma);
+
+    //! Squared Sampson distance d^2 and its variance v (pixels^2); v is kept positive.
+    void evaluate(const Eigen::Vector2d& x1, const Eigen::Vector2d& x2, bool leverage,
+                  double& distanceSquared, double& variance) const;
+
+private:
+    Eigen::Matrix3d F_;
+    Eigen::Matrix<double, 9, 9> M_;
+    double sigmaSquared_;
+};
+
+} // namespace detail
+} // namespace rcme
+} // namespace cv
+
+#endif // OPENCV_RCME_COMPONENTS_RESIDUAL_UNCERTAINTY_HPP

@@ -1,0 +1,85 @@
+// This file is part of the rcme module. It is subject to the license terms in the LICENSE file
+// found in the top-level directory of this distribution.
+
+// Box 1(a) of Fig. 1(b), "model instantiation and uncertainty analysis": the hypotheses of a
+// minimal solver, each given its motion (with a camera matrix: the essential matrix decomposed
+// with cheirality on the sample) and the first-order covariance of its parameters from the m
+// samples, Sigma_p = (J^T Sigma_S^-1 J)^-1 in a minimal parameterization (5-DoF motion, 7-DoF F).
+// A sample whose information matrix is ill-conditioned is degenerate: its hypothesis is dropped.
+// Optionally the hypothesis is first fitted to its own sample by Gauss-Newton, for which that
+// covariance is exact to first order (Params::sampleFitIterations).
+
+#include "framework/components.hpp"
+#include "geometry/epipolar.hpp"
+
+namespace cv {
+namespace rcme {
+namespace detail {
+
+namespace {
+
+class UncertainModelInstantiation final : public MinimalSolver
+{
+public:
+    UncertainModelInstantiation(std::unique_ptr<MinimalSolver> solver, int fitIterations)
+        : solver_(std::move(solver)), fitIterations_(fitIterations)
+    {
+    }
+
+    int sampleSize() const override { return solver_->sampleSize(); }
+    int maxSolutions() const override { return solver_->maxSolutions(); }
+    bool isOverParameterized() const override { return solver_->isOverParameterized(); }
+
+    int estimate(const TwoViewData& data, const std::vector<int>& sample,
+                 std::vector<Model>& models) override
+    {
+        solver_->estimate(data, sample, models);
+        size_t kept = 0;
+        for (Model& model : models) {
+            if (data.calibrated && !model.hasMotion && !motionFromSample(data, sample, model))
+                continue;
+            if (!fitModelOn(data, sample, fitIterations_, model) || model.uncertaintyDof == 0)
+                continue;
+            models[kept++] = model;
+        }
+        models.resize(kept);
+        return static_cast<int>(kept);
+    }
+
+private:
+    // Cheirality decided by the sample alone: the hypothesis knows nothing else.
+    bool motionFromSample(const TwoViewData& data, const std::vector<int>& sample, Model& model)
+    {
+        samplePoints1_.clear();
+        samplePoints2_.clear();
+        for (int i : sample) {
+            samplePoints1_.push_back(data.points1[static_cast<size_t>(i)]);
+            samplePoints2_.push_back(data.points2[static_cast<size_t>(i)]);
+        }
+        const Eigen::Matrix3d E =
+            model.E.isZero() ? essentialFromFundamental(model.F, data.K) : model.E;
+        if (recoverMotionFromEssential(E, samplePoints1_, samplePoints2_, data.Kinv, nullptr,
+                                       model.R, model.t) <= 0)
+            return false;
+        model.E = skew(model.t) * model.R;
+        model.F = fundamentalFromEssential(model.E, data.Kinv);
+        model.hasMotion = true;
+        return true;
+    }
+
+    std::unique_ptr<MinimalSolver> solver_;
+    int fitIterations_;
+    std::vector<Eigen::Vector2d> samplePoints1_, samplePoints2_;
+};
+
+} // namespace
+
+std::unique_ptr<MinimalSolver>
+createUncertainModelInstantiation(std::unique_ptr<MinimalSolver> solver, int fitIterations)
+{
+    return std::make_unique<UncertainModelInstantiation>(std::move(solver), fitIterations);
+}
+
+} // namespace detail
+} // namespace rcme
+} // namespace cv

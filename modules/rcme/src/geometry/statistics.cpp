@@ -1,0 +1,71 @@
+// This file is part of the rcme module. It is subject to the license terms in the LICENSE file
+// found in the top-level directory of this distribution.
+
+#include "geometry/statistics.hpp"
+
+#include "precomp.hpp"
+
+namespace cv {
+namespace rcme {
+namespace detail {
+
+namespace {
+
+// Regularized lower incomplete gamma P(a, x) by its series (converges for every x, and the
+// chi-square arguments used here are small).
+double lowerRegularizedGamma(double a, double x)
+{
+    if (x <= 0)
+        return 0;
+    double term = 1.0 / a, sum = term;
+    for (int n = 1; n < 1000 && term > 1e-16 * sum; ++n) {
+        term *= x / (a + n);
+        sum += term;
+    }
+    return std::min(1.0, sum * std::exp(-x + a * std::log(x) - std::lgamma(a)));
+}
+
+} // namespace
+
+double normalQuantile(double p)
+{
+    CV_Assert(p > 0 && p < 1);
+    // Bisection on the CDF 0.5 erfc(-x / sqrt 2): plain, and exact to double precision.
+    double lo = -40, hi = 40;
+    for (int i = 0; i < 200; ++i) {
+        const double mid = 0.5 * (lo + hi);
+        (0.5 * std::erfc(-mid / std::sqrt(2.0)) < p ? lo : hi) = mid;
+    }
+    return 0.5 * (lo + hi);
+}
+
+double chiSquareQuantile(double p, int dof)
+{
+    CV_Assert(p > 0 && p < 1 && dof >= 1);
+    double lo = 0, hi = 10.0 * dof + 100;
+    for (int i = 0; i < 200; ++i) {
+        const double mid = 0.5 * (lo + hi);
+        (lowerRegularizedGamma(0.5 * dof, 0.5 * mid) < p ? lo : hi) = mid;
+    }
+    return 0.5 * (lo + hi);
+}
+
+int binomialTailBound(int trials, double p, double level)
+{
+    if (p >= 1.0)
+        return trials + 1;
+    const double ratio = p / (1.0 - p);
+    double pmf = std::pow(1.0 - p, trials); // P(X = 0)
+    double cdf = 0;
+    for (int k = 0; k <= trials; ++k) {
+        if (1.0 - cdf <= level) // 1 - cdf = P(X >= k)
+            return k;
+        cdf += pmf;
+        pmf *= ratio * (trials - k) / (k + 1.0);
+    }
+    return trials + 1;
+}
+
+} // namespace detail
+} // namespace rcme
+} // namespace cv

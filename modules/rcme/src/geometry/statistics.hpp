@@ -1,0 +1,25 @@
+// This file is part of the rcme module. It is subject to the license terms in the LICENSE file
+// found in the top-level directory of this distribution.
+
+#ifndef OPENCV_RCME_GEOMETRY_STATISTICS_HPP
+#define OPENCV_RCME_GEOMETRY_STATISTICS_HPP
+
+namespace cv {
+namespace rcme {
+namespace detail {
+
+//! Phi^-1(p), the standard normal quantile, for p in (0, 1).
+double normalQuantile(double p);
+
+//! F_k^-1(p), the chi-square quantile with k degrees of freedom, for p in (0, 1).
+double chiSquareQuantile(double p, int dof);
+
+/** Smallest k with P(Binomial(trials, p) >= k) <= level: how many successes chance alone
+exceeds only with probability `level`. */
+int binomialTailBound(int trials, double p, double level);
+
+} // namespace detail
+} // namespace rcme
+} // namespace cv
+
+#endif // OPENCV_RCME_GEOMETRY_STATISTICS_HPP
