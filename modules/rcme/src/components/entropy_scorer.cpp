@@ -28,12 +28,11 @@ class EntropyScorer final : public Scorer
 {
 public:
     EntropyScorer(const TwoViewData& data, const Params& params, int sampleSize)
-        : sigma_(data.sigma), inlierBound_(chiSquareQuantile(1.0 - params.alpha,
-                                                             params.consistencyDof)),
+        : sigma_(data.sigma),
+          inlierBound_(chiSquareQuantile(1.0 - params.alpha, params.consistencyDof)),
           entropyThreshold_(params.entropyThreshold),
-          zCritical_(normalQuantile(1.0 - params.alpha)),
-          lambda_(params.inlierRatioFactor), priorInlierRatio_(params.priorInlierRatio),
-          pointCount_(data.size())
+          zCritical_(normalQuantile(1.0 - params.alpha)), lambda_(params.inlierRatioFactor),
+          priorInlierRatio_(params.priorInlierRatio), pointCount_(data.size())
     {
         // Chance support at the inlier band of a perfectly known model (v = sigma^2).
         minimalSupport_ = minimalSupport(data, std::sqrt(inlierBound_) * sigma_, sampleSize,

@@ -48,8 +48,8 @@ private:
 
 } // namespace
 
-std::unique_ptr<ModelVerifier> createModelSampleConsistencyTest(double sigma, double alpha,
-                                                                int dof, bool leverage)
+std::unique_ptr<ModelVerifier> createModelSampleConsistencyTest(double sigma, double alpha, int dof,
+                                                                bool leverage)
 {
     return std::make_unique<ModelSampleConsistencyTest>(sigma, alpha, dof, leverage);
 }

@@ -158,8 +158,8 @@ std::unique_ptr<Refiner> createGoldStandardRefiner(int maxIterations);
 // RCME's boxes (doc/algorithm.md).
 std::unique_ptr<MinimalSolver>
 createUncertainModelInstantiation(std::unique_ptr<MinimalSolver> solver, int fitIterations);
-std::unique_ptr<ModelVerifier> createModelSampleConsistencyTest(double sigma, double alpha,
-                                                                int dof, bool leverage);
+std::unique_ptr<ModelVerifier> createModelSampleConsistencyTest(double sigma, double alpha, int dof,
+                                                                bool leverage);
 std::unique_ptr<Scorer> createEntropyScorer(const TwoViewData& data, const Params& params,
                                             int sampleSize);
 //! Stops once the best candidate's mean entropy is at most entropyBound (> 0), else as `bound`.

@@ -18,8 +18,8 @@ EstimatorComponents createEstimator(const Params& params, const TwoViewData& dat
     // tangent space); Standard scores rank-2 F and makes the motion from the selected model.
     c.solver = createEightPointSolver(/*essentialHypotheses=*/rcme);
     if (rcme)
-        c.solver = createUncertainModelInstantiation(std::move(c.solver),
-                                                     params.sampleFitIterations);
+        c.solver =
+            createUncertainModelInstantiation(std::move(c.solver), params.sampleFitIterations);
     const int m = c.solver->sampleSize();
     if (data.size() >= m)
         c.sampler = createUniformSampler(data.size(), m,
@@ -39,8 +39,8 @@ EstimatorComponents createEstimator(const Params& params, const TwoViewData& dat
                 data.sigma, params.alpha, params.consistencyDof, params.sampleLeverage));
         c.scorer = createEntropyScorer(data, params, m);
         if (!params.exactIterations)
-            c.termination = createEntropyTermination(std::move(c.termination),
-                                                     params.earlyTerminationEntropy);
+            c.termination =
+                createEntropyTermination(std::move(c.termination), params.earlyTerminationEntropy);
         break;
     default:
         CV_Error(Error::StsNotImplemented, "Params.method: not implemented yet");

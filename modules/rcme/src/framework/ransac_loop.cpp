@@ -89,8 +89,8 @@ RansacResult runRansac(const TwoViewData& data, EstimatorComponents& c)
             result.message = "every minimal sample was degenerate (identical or collinear points)";
         } else {
             result.status = STATUS_POOR_QUALITY_INPUT;
-            result.message = cv::format("no hypothesis passed the acceptance tests in %d iterations",
-                                        iteration);
+            result.message =
+                cv::format("no hypothesis passed the acceptance tests in %d iterations", iteration);
         }
         return result;
     }
