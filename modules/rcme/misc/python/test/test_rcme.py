@@ -7,14 +7,27 @@ same names, argument orders and result tuples. A binding that is absent is skipp
 `test_a_binding_is_importable` fails when neither is.
 
 The tests are unittest classes, so both pytest (`python3 -m pytest -q <this folder>`) and
-OpenCV's own Python test runner (plain unittest, which collects misc/python/test/test_*.py in
-an in-tree build) can run them. They only use synthetic scenes and finish in a few seconds.
+OpenCV's own Python test runner can run them. OpenCV's runner (`modules/python/test/test.py` of
+an OpenCV source tree, run from the build folder) collects misc/python/test/test_*.py of every
+wrapped module and puts its `tests_common` on the path; the cv2 class then derives from
+`NewOpenCVTests`, as contrib modules' tests do, and plain `unittest.TestCase` otherwise. They
+only use synthetic scenes and finish in a few seconds.
+
+RCME_TEST_REQUIRE (a comma-separated list of `standalone`, `cv2`) turns the skip of an absent
+binding into an error: the in-tree build script sets RCME_TEST_REQUIRE=cv2, so a cv2 without
+rcme fails the run instead of passing it with every test skipped.
 """
 
+import os
 import threading
 import unittest
 
 import numpy as np
+
+try:  # OpenCV's runner (modules/python/test/test.py) puts tests_common on sys.path
+    from tests_common import NewOpenCVTests as _Cv2TestCase
+except ImportError:  # pytest, or plain unittest outside an OpenCV source tree
+    _Cv2TestCase = unittest.TestCase
 
 FM_RANSAC = 8  # cv2.FM_RANSAC == cv2.RANSAC == 8, accepted by the drop-in overloads
 FM_LMEDS = 4  # cv2.FM_LMEDS, not supported by rcme
@@ -71,13 +84,20 @@ class _RcmeSuite:
 
     loader = None  # a function returning (module, error type) or None
     binding_name = ""
+    binding_key = ""  # its name in RCME_TEST_REQUIRE
     b = None
     error = Exception
 
     @classmethod
     def setUpClass(cls):
+        super().setUpClass()
         loaded = cls.loader()
         if loaded is None:
+            required = os.environ.get("RCME_TEST_REQUIRE", "").replace(" ", "").split(",")
+            if cls.binding_key in required:
+                raise RuntimeError("binding %s is not importable, and RCME_TEST_REQUIRE=%s "
+                                   "requires it" % (cls.binding_name,
+                                                    os.environ["RCME_TEST_REQUIRE"]))
             raise unittest.SkipTest("binding %s is not importable" % cls.binding_name)
         cls.b, cls.error = loaded
 
@@ -680,6 +700,7 @@ class TestStandaloneRcme(_RcmeSuite, unittest.TestCase):
 
     loader = staticmethod(_load_standalone)
     binding_name = "rcme (standalone)"
+    binding_key = "standalone"
 
     # --- conveniences of the standalone module that cv2.rcme does not have
 
@@ -730,11 +751,16 @@ class TestStandaloneRcme(_RcmeSuite, unittest.TestCase):
                       b.recoverPose.__doc__)
 
 
-class TestCv2Rcme(_RcmeSuite, unittest.TestCase):
-    """cv2.rcme from an OpenCV build with the module (absent from Debian's python3-opencv)."""
+class TestCv2Rcme(_RcmeSuite, _Cv2TestCase):
+    """cv2.rcme from an OpenCV build with the module (absent from Debian's python3-opencv).
+
+    A NewOpenCVTests under OpenCV's runner (its setUp seeds cv2's RNG; the tests do not depend
+    on that), a plain unittest.TestCase otherwise.
+    """
 
     loader = staticmethod(_load_cv2)
     binding_name = "cv2.rcme"
+    binding_key = "cv2"
 
     def test_root_alias(self):
         import cv2
@@ -748,4 +774,7 @@ class TestBindingsAvailable(unittest.TestCase):
 
 
 if __name__ == "__main__":
-    unittest.main()
+    if _Cv2TestCase is not unittest.TestCase:
+        _Cv2TestCase.bootstrap()  # NewOpenCVTests.bootstrap: --repo, OPENCV_TEST_DATA_PATH
+    else:
+        unittest.main()
