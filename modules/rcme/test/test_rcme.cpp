@@ -1,0 +1,316 @@
+// This file is part of the rcme module. It is subject to the license terms in the LICENSE file
+// found in the top-level directory of this distribution.
+
+// RCME and pRCME: through the public API, and (standalone build) their boxes one by one.
+
+#include "test_precomp.hpp"
+
+#ifdef RCME_STANDALONE_TESTS
+#include "components/residual_uncertainty.hpp"
+#include "framework/components.hpp"
+#include "geometry/epipolar.hpp"
+#include "geometry/motion_parameterization.hpp"
+
+#include <opencv2/core/eigen.hpp>
+#endif
+
+namespace opencv_test {
+namespace {
+
+Params rcmeParams(int seed, Method method = METHOD_RCME)
+{
+    Params params;
+    params.method = method;
+    params.randomGeneratorState = seed;
+    return params;
+}
+
+SyntheticScene scene(SceneKind kind, int seed, double inlierRatio = 0.5, double sigma = 1.0)
+{
+    SceneParams sp;
+    sp.kind = kind;
+    sp.seed = seed;
+    sp.inlierRatio = inlierRatio;
+    sp.sigma = sigma;
+    return generateScene(sp);
+}
+
+TEST(Rcme_RCME, recovers_the_motion_of_generic_scenes)
+{
+    for (Method method : {METHOD_RCME, METHOD_PRCME}) {
+        int failures = 0;
+        std::vector<double> errors;
+        for (int seed = 0; seed < 20; ++seed) {
+            const SyntheticScene s = scene(SCENE_GENERIC, seed);
+            const Report r = estimateRelativeMotion(s.points1, s.points2, s.cameraMatrix,
+                                                    rcmeParams(seed, method));
+            if (r.status != STATUS_SUCCESS) {
+                ++failures;
+                continue;
+            }
+            errors.push_back(compareMotion(r.R, r.t, s.R, s.t).rotationDeg);
+            EXPECT_FALSE(cvIsNaN(r.meanEntropy));
+            EXPECT_GE(r.meanEntropy, 0.0); // excess over the noise floor
+            EXPECT_EQ(r.covariance.size(), Size(5, 5));
+        }
+        ASSERT_FALSE(errors.empty());
+        std::sort(errors.begin(), errors.end());
+        EXPECT_LT(errors[errors.size() / 2], 0.5) << "method " << method;
+        EXPECT_LE(failures, 2) << "method " << method;
+    }
+}
+
+TEST(Rcme_RCME, uncalibrated_gives_a_fundamental_matrix)
+{
+    const SyntheticScene s = scene(SCENE_GENERIC, 3);
+    Mat mask;
+    Status status;
+    const Mat F = findFundamentalMat(s.points1, s.points2, rcmeParams(3), mask, status);
+    ASSERT_EQ(status, STATUS_SUCCESS);
+    int truePositive = 0;
+    for (int i = 0; i < mask.rows; ++i)
+        truePositive += mask.at<uchar>(i) && s.inlierMask.at<uchar>(i);
+    EXPECT_GT(truePositive, 0.8 * countNonZero(s.inlierMask));
+}
+
+TEST(Rcme_RCME, pure_outliers_are_poor_quality_input)
+{
+    for (int seed = 0; seed < 5; ++seed) {
+        const SyntheticScene s = scene(SCENE_GENERIC, seed, 0.0);
+        for (Method method : {METHOD_RCME, METHOD_PRCME}) {
+            const Report r = estimateRelativeMotion(s.points1, s.points2, s.cameraMatrix,
+                                                    rcmeParams(seed, method));
+            EXPECT_EQ(r.status, STATUS_POOR_QUALITY_INPUT) << "seed " << seed;
+            EXPECT_EQ(countNonZero(r.mask), 0);
+            EXPECT_TRUE(r.R.empty());
+        }
+    }
+}
+
+TEST(Rcme_RCME, too_few_inliers_are_poor_quality_input)
+{
+    // 3 % inliers: 15 true correspondences among 500, fewer than chance explains.
+    for (int seed = 0; seed < 3; ++seed) {
+        const SyntheticScene s = scene(SCENE_GENERIC, seed, 0.03);
+        const Report r =
+            estimateRelativeMotion(s.points1, s.points2, s.cameraMatrix, rcmeParams(seed));
+        EXPECT_EQ(r.status, STATUS_POOR_QUALITY_INPUT) << "seed " << seed;
+    }
+}
+
+TEST(Rcme_RCME, collinear_and_identical_points_are_not_estimated)
+{
+    Mat p1(60, 2, CV_64F), p2(60, 2, CV_64F);
+    for (int i = 0; i < 60; ++i) {
+        p1.at<double>(i, 0) = 10 + 7 * i;
+        p1.at<double>(i, 1) = 20 + 3 * i;
+        p2.at<double>(i, 0) = 15 + 6 * i;
+        p2.at<double>(i, 1) = 40 + 2 * i;
+    }
+    const Mat K = (Mat_<double>(3, 3) << 500, 0, 320, 0, 500, 240, 0, 0, 1);
+    EXPECT_NE(estimateRelativeMotion(p1, p2, K, rcmeParams(0)).status, STATUS_SUCCESS);
+    const Mat same(60, 2, CV_64F, Scalar(100));
+    EXPECT_EQ(estimateRelativeMotion(same, same, K, rcmeParams(0)).status,
+              STATUS_DEGENERATE_CONFIGURATION);
+}
+
+TEST(Rcme_RCME, same_seed_same_result)
+{
+    const SyntheticScene s = scene(SCENE_CORRIDOR, 4);
+    Params params = rcmeParams(11);
+    params.exactIterations = true;
+    params.maxIterations = 200;
+    const Report a = estimateRelativeMotion(s.points1, s.points2, s.cameraMatrix, params);
+    const Report b = estimateRelativeMotion(s.points1, s.points2, s.cameraMatrix, params);
+    ASSERT_EQ(a.status, b.status);
+    ASSERT_EQ(a.status, STATUS_SUCCESS);
+    EXPECT_EQ(cv::norm(a.R, b.R, NORM_INF), 0.0);
+    EXPECT_EQ(cv::norm(a.mask, b.mask, NORM_INF), 0.0);
+    EXPECT_EQ(a.meanEntropy, b.meanEntropy);
+}
+
+TEST(Rcme_RCME, exact_iterations_and_early_termination)
+{
+    const SyntheticScene s = scene(SCENE_GENERIC, 6, 0.8);
+    Params params = rcmeParams(6);
+    params.maxIterations = 400;
+    params.exactIterations = true;
+    params.earlyTerminationEntropy = 10.0; // ignored in exact mode
+    EXPECT_EQ(estimateRelativeMotion(s.points1, s.points2, s.cameraMatrix, params).iterations, 400);
+    params.exactIterations = false;
+    params.confidence = 1.0 - 1e-12; // the adaptive bound alone would run them all
+    const Report early = estimateRelativeMotion(s.points1, s.points2, s.cameraMatrix, params);
+    ASSERT_EQ(early.status, STATUS_SUCCESS);
+    EXPECT_LT(early.iterations, 50); // a generous bound is met by the first candidates
+}
+
+#ifdef RCME_STANDALONE_TESTS
+
+using namespace cv::rcme::detail;
+
+TwoViewData calibratedData(const SyntheticScene& s, bool inliersOnly)
+{
+    TwoViewData data;
+    for (int i = 0; i < s.points1.rows; ++i) {
+        if (inliersOnly && !s.inlierMask.at<uchar>(i))
+            continue;
+        data.points1.emplace_back(s.points1.at<double>(i, 0), s.points1.at<double>(i, 1));
+        data.points2.emplace_back(s.points2.at<double>(i, 0), s.points2.at<double>(i, 1));
+    }
+    data.calibrated = true;
+    cv2eigen(s.cameraMatrix, data.K);
+    data.Kinv = data.K.inverse();
+    data.sigma = 1.0;
+    data.threshold = 1.96;
+    return data;
+}
+
+Model trueMotion(const SyntheticScene& s, const TwoViewData& data)
+{
+    Model model;
+    cv2eigen(s.R, model.R);
+    cv2eigen(s.t, model.t);
+    model.hasMotion = true;
+    model.E = skew(model.t) * model.R;
+    model.F = fundamentalFromEssential(model.E, data.Kinv);
+    return model;
+}
+
+TEST(Rcme_Boxes, quality_test_sign_tight_passes_loose_fails)
+{
+    const SyntheticScene s = scene(SCENE_GENERIC, 2, 0.5);
+    const TwoViewData data = calibratedData(s, false);
+    TwoViewData inliers = calibratedData(s, true);
+    Model tight = trueMotion(s, data);
+    std::vector<int> all(inliers.points1.size());
+    std::iota(all.begin(), all.end(), 0);
+    ASSERT_TRUE(fitModelOn(inliers, all, 0, tight)); // covariance from ~250 inliers: tight
+    ASSERT_EQ(tight.uncertaintyDof, 5);
+    Model loose = tight;
+    loose.covariance *= 1e8; // inliers' variances far above the noise floor
+
+    Params params = rcmeParams(0);
+    auto scorer = createEntropyScorer(data, params, 8);
+    const Score tightScore = scorer->score(data, tight);
+    const Score looseScore = scorer->score(data, loose);
+    EXPECT_TRUE(tightScore.isCandidate);
+    EXPECT_LT(tightScore.meanEntropy, params.entropyThreshold);
+    EXPECT_FALSE(looseScore.isCandidate);
+    EXPECT_GT(looseScore.meanEntropy, params.entropyThreshold);
+    EXPECT_TRUE(tightScore.isBetterThan(looseScore)); // least mean entropy wins
+    // The sign convention: with mu above the loose model's entropy, it passes too.
+    params.entropyThreshold = looseScore.meanEntropy + 5;
+    EXPECT_TRUE(createEntropyScorer(data, params, 8)->score(data, loose).isCandidate);
+}
+
+TEST(Rcme_Boxes, consistency_test_rejects_contaminated_samples)
+{
+    // Samples of 8 true correspondences against samples with one outlier swapped in: the
+    // consistency test (paper defaults but the sample fit) passes far more of the former.
+    int cleanPassed = 0, contaminatedPassed = 0, cleanTried = 0, contaminatedTried = 0;
+    for (int seed = 0; seed < 10; ++seed) {
+        const SyntheticScene s = scene(SCENE_GENERIC, seed, 0.5);
+        const TwoViewData data = calibratedData(s, false);
+        std::vector<int> inlierIdx, outlierIdx;
+        for (int i = 0; i < s.inlierMask.rows; ++i)
+            (s.inlierMask.at<uchar>(i) ? inlierIdx : outlierIdx).push_back(i);
+        const Params params = rcmeParams(seed);
+        auto solver = createUncertainModelInstantiation(createEightPointSolver(true),
+                                                        params.sampleFitIterations);
+        auto test = createModelSampleConsistencyTest(1.0, params.alpha, params.consistencyDof,
+                                                     params.sampleLeverage);
+        RNG rng(seed + 100);
+        for (int trial = 0; trial < 20; ++trial) {
+            std::vector<int> sample;
+            while (sample.size() < 8) {
+                const int i = inlierIdx[static_cast<size_t>(rng.uniform(0, (int)inlierIdx.size()))];
+                if (std::find(sample.begin(), sample.end(), i) == sample.end())
+                    sample.push_back(i);
+            }
+            for (bool contaminate : {false, true}) {
+                std::vector<int> used = sample;
+                if (contaminate)
+                    used[3] =
+                        outlierIdx[static_cast<size_t>(rng.uniform(0, (int)outlierIdx.size()))];
+                std::vector<Model> models;
+                if (solver->estimate(data, used, models) == 0)
+                    continue;
+                const bool passed = test->isModelGood(data, used, models[0]);
+                (contaminate ? contaminatedTried : cleanTried)++;
+                (contaminate ? contaminatedPassed : cleanPassed) += passed;
+            }
+        }
+    }
+    ASSERT_GT(cleanTried, 150);
+    ASSERT_GT(contaminatedTried, 150);
+    const double cleanRate = static_cast<double>(cleanPassed) / cleanTried;
+    const double contaminatedRate = static_cast<double>(contaminatedPassed) / contaminatedTried;
+    std::cout << "consistency test pass rate: clean " << cleanRate << ", one outlier "
+              << contaminatedRate << std::endl;
+    EXPECT_GT(cleanRate, 0.8);
+    EXPECT_LT(contaminatedRate, 0.5 * cleanRate);
+}
+
+TEST(Rcme_Boxes, propagated_covariance_matches_monte_carlo)
+{
+    // Sigma_p of a minimal sample against the spread of re-solving noisy copies of the same
+    // sample: the maximum-likelihood fit of the motion to the 8 points (started at the truth, so
+    // that the figure checks the propagation and not the 8-point solver's basin of attraction,
+    // which the loop's many hypotheses take care of).
+    const SyntheticScene truth = scene(SCENE_GENERIC, 5, 1.0, 0.0);
+    TwoViewData exact = calibratedData(truth, true);
+    const std::vector<int> sample = {3, 29, 61, 97, 130, 166, 201, 240};
+    Model atTruth = trueMotion(truth, exact);
+    ASSERT_TRUE(fitModelOn(exact, sample, 0, atTruth));
+    ASSERT_EQ(atTruth.uncertaintyDof, 5);
+    const Eigen::Matrix<double, 5, 5> predicted = atTruth.covariance.topLeftCorner<5, 5>();
+
+    const MotionTangent tangent(atTruth.R, atTruth.t);
+    RNG rng(7);
+    std::vector<Eigen::Matrix<double, 5, 1>> thetas;
+    for (int trial = 0; trial < 400; ++trial) {
+        TwoViewData noisy = exact;
+        for (int i : sample) {
+            noisy.points1[static_cast<size_t>(i)] +=
+                Eigen::Vector2d(rng.gaussian(1), rng.gaussian(1));
+            noisy.points2[static_cast<size_t>(i)] +=
+                Eigen::Vector2d(rng.gaussian(1), rng.gaussian(1));
+        }
+        Model fitted = trueMotion(truth, exact);
+        if (!fitModelOn(noisy, sample, 20, fitted))
+            continue;
+        // The estimate in the tangent space at the truth.
+        const Eigen::AngleAxisd delta(atTruth.R.transpose() * fitted.R);
+        Eigen::Matrix<double, 5, 1> theta;
+        theta.head<3>() = delta.angle() * delta.axis();
+        theta.tail<2>() = tangent.B.transpose() * fitted.t;
+        thetas.push_back(theta);
+    }
+    ASSERT_GT(thetas.size(), 380u);
+    // First-order covariance describes the basin of the true solution; a noisy copy whose fit
+    // leaves it (rare from the truth) is counted and left out.
+    const Eigen::Matrix<double, 5, 5> information = predicted.inverse();
+    std::vector<Eigen::Matrix<double, 5, 1>> local;
+    for (const auto& th : thetas)
+        if (th.dot(information * th) < 20.5) // chi-square, 5 DoF, 0.999
+            local.push_back(th);
+    std::cout << "Monte Carlo: " << local.size() << " of " << thetas.size()
+              << " estimates in the local basin" << std::endl;
+    ASSERT_GT(local.size(), 0.9 * thetas.size()); // measured: 378 of 400
+    Eigen::Matrix<double, 5, 1> mean = Eigen::Matrix<double, 5, 1>::Zero();
+    for (const auto& th : local)
+        mean += th;
+    mean /= static_cast<double>(local.size());
+    Eigen::Matrix<double, 5, 5> observed = Eigen::Matrix<double, 5, 5>::Zero();
+    for (const auto& th : local)
+        observed += (th - mean) * (th - mean).transpose();
+    observed /= static_cast<double>(local.size() - 1);
+    const double ratio = observed.trace() / predicted.trace();
+    std::cout << "Monte Carlo / propagated covariance trace: " << ratio << std::endl;
+    EXPECT_NEAR(ratio, 1.0, 0.25);
+}
+
+#endif // RCME_STANDALONE_TESTS
+
+} // namespace
+} // namespace opencv_test
