@@ -11,7 +11,8 @@
 // - 3(a) the inlier-set quality test (eq. 6, sign as written): Z = (psi - mu) / (s / sqrt(n_j))
 //   <= Phi^-1(1 - alpha), psi and s the mean and standard deviation of the excess entropies, mu
 //   Params::entropyThreshold; and the size test n_j / n >= lambda * omega_p, omega_p given or the
-//   largest inlier ratio of a quality-passing hypothesis so far.
+//   largest ratio of points within the noise-only band (v = sigma^2) of a quality-passing
+//   hypothesis so far.
 // The score is psi: the candidate of least mean entropy is selected (eq. 8).
 
 #include "components/residual_uncertainty.hpp"
@@ -46,7 +47,7 @@ public:
             return score;
         const ResidualUncertainty uncertainty(model, sigma_);
         const double sigmaSquared = sigma_ * sigma_;
-        int count = 0;
+        int count = 0, certainCount = 0;
         double sum = 0, sumSquares = 0;
         for (size_t i = 0; i < data.points1.size(); ++i) {
             double distanceSquared = 0, variance = 0;
@@ -54,6 +55,7 @@ public:
                                  variance);
             if (!(distanceSquared <= inlierBound_ * variance))
                 continue;
+            certainCount += distanceSquared <= inlierBound_ * sigmaSquared;
             const double excessEntropy = 0.5 * std::log(variance / sigmaSquared);
             ++count;
             sum += excessEntropy;
@@ -71,9 +73,12 @@ public:
         const double z = deviation > 0 ? (psi - entropyThreshold_) / (deviation / std::sqrt(count))
                                        : (psi > entropyThreshold_ ? HUGE_VAL : -HUGE_VAL);
         const bool quality = z <= zCritical_;
-        const double ratio = static_cast<double>(count) / pointCount_;
+        // omega_p from the inliers a perfectly known model would have (v = sigma^2): counts
+        // inflated by a loose model's wide bands would make every tighter model fail the size
+        // test, its refinement included.
         if (quality)
-            bestQualityRatio_ = std::max(bestQualityRatio_, ratio);
+            bestQualityRatio_ =
+                std::max(bestQualityRatio_, static_cast<double>(certainCount) / pointCount_);
         score.isCandidate = quality && count >= minimalSupport_ && isStillCandidate(score);
         return score;
     }

@@ -45,6 +45,30 @@ void refineSelected(const TwoViewData& data, EstimatorComponents& c, RansacResul
     }
 }
 
+// Which of E's decompositions is the motion is decided by cheirality on all the final inliers:
+// a hypothesis decided it on its minimal sample alone, and refinement cannot change it (E and -E
+// are the same geometry). When the decision changes the motion, its uncertainty is recomputed
+// at the new one from the same inliers.
+bool decideMotionOnInliers(const TwoViewData& data, EstimatorComponents& c, RansacResult& result)
+{
+    Model& model = result.model;
+    const Eigen::Matrix3d R = model.R;
+    const Eigen::Vector3d t = model.t;
+    if (!recoverMotion(data, result.mask, model))
+        return false;
+    if ((model.R - R).norm() < 1e-9 && (model.t - t).norm() < 1e-9)
+        return true;
+    if (model.uncertaintyDof > 0) {
+        std::vector<int> inliers;
+        for (size_t i = 0; i < result.mask.size(); ++i)
+            if (result.mask[i])
+                inliers.push_back(static_cast<int>(i));
+        fitModelOn(data, inliers, 0, model);
+    }
+    result.score = c.scorer->score(data, model);
+    return true;
+}
+
 } // namespace
 
 RansacResult runRansac(const TwoViewData& data, EstimatorComponents& c)
@@ -116,6 +140,12 @@ RansacResult runRansac(const TwoViewData& data, EstimatorComponents& c)
         result.score = c.scorer->score(data, result.model);
         c.scorer->classify(data, result.model, result.mask);
         refineSelected(data, c, result);
+    }
+    if (data.calibrated && !decideMotionOnInliers(data, c, result)) {
+        result.status = STATUS_DEGENERATE_CONFIGURATION;
+        result.message = "no decomposition of E puts the inliers in front of both cameras";
+        std::fill(result.mask.begin(), result.mask.end(), 0);
+        return result;
     }
     if (!result.score.isCandidate) {
         result.status = STATUS_POOR_QUALITY_INPUT;
