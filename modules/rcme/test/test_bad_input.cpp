@@ -46,40 +46,42 @@ struct EntryPoint
     std::function<Status(const Mat&, const Mat&, const Mat&, Mat&)> call;
 };
 
-std::vector<EntryPoint> entryPoints()
+std::vector<EntryPoint> entryPoints(Method method = METHOD_STANDARD)
 {
+    Params params;
+    params.method = method;
     return {
         {"findFundamentalMat",
-         [](const Mat& a, const Mat& b, const Mat&, Mat& mask) {
+         [params](const Mat& a, const Mat& b, const Mat&, Mat& mask) {
              Status s;
-             findFundamentalMat(a, b, Params(), mask, s);
+             findFundamentalMat(a, b, params, mask, s);
              return s;
          }},
         {"findFundamentalMat(K)",
-         [](const Mat& a, const Mat& b, const Mat& K, Mat& mask) {
+         [params](const Mat& a, const Mat& b, const Mat& K, Mat& mask) {
              Status s;
-             findFundamentalMat(a, b, K, Params(), mask, s);
+             findFundamentalMat(a, b, K, params, mask, s);
              return s;
          }},
         {"findEssentialMat",
-         [](const Mat& a, const Mat& b, const Mat& K, Mat& mask) {
+         [params](const Mat& a, const Mat& b, const Mat& K, Mat& mask) {
              Status s;
-             findEssentialMat(a, b, K, Params(), mask, s);
+             findEssentialMat(a, b, K, params, mask, s);
              return s;
          }},
         {"recoverPose",
-         [](const Mat& a, const Mat& b, const Mat& K, Mat& mask) {
+         [params](const Mat& a, const Mat& b, const Mat& K, Mat& mask) {
              Status s;
              Mat E, R, t, cov;
-             recoverPose(a, b, K, E, R, t, Params(), mask, s, cov);
+             recoverPose(a, b, K, E, R, t, params, mask, s, cov);
              if (s != STATUS_SUCCESS) {
                  EXPECT_TRUE(E.empty() && R.empty() && t.empty() && cov.empty());
              }
              return s;
          }},
         {"estimateRelativeMotion",
-         [](const Mat& a, const Mat& b, const Mat& K, Mat& mask) {
-             const Report r = estimateRelativeMotion(a, b, K, Params());
+         [params](const Mat& a, const Mat& b, const Mat& K, Mat& mask) {
+             const Report r = estimateRelativeMotion(a, b, K, params);
              mask = r.mask;
              if (r.status != STATUS_SUCCESS) {
                  EXPECT_TRUE(r.F.empty() && r.R.empty() && r.t.empty());
@@ -162,6 +164,8 @@ TEST(Rcme_BadInput, bad_params_throw_naming_the_field)
         {"Params.inlierRatioFactor", [](Params& p) { p.inlierRatioFactor = 1.5; }},
         {"Params.priorInlierRatio", [](Params& p) { p.priorInlierRatio = 2; }},
         {"Params.consistencyDof", [](Params& p) { p.consistencyDof = 0; }},
+        {"Params.sampleFitIterations", [](Params& p) { p.sampleFitIterations = -1; }},
+        {"Params.earlyTerminationEntropy", [](Params& p) { p.earlyTerminationEntropy = NAN; }},
     };
     for (const Case& c : cases) {
         SCOPED_TRACE(c.field);
@@ -176,43 +180,48 @@ TEST(Rcme_BadInput, bad_params_throw_naming_the_field)
 TEST(Rcme_BadInput, methods_of_later_milestones_say_not_implemented)
 {
     const Mat p1 = randomPoints(50, 1), p2 = randomPoints(50, 2);
-    Params params;
-    params.method = METHOD_MLESAC;
-    Mat mask;
-    Status status;
-    try {
-        findFundamentalMat(p1, p2, params, mask, status);
-        ADD_FAILURE() << "METHOD_MLESAC is not implemented yet and must say so";
-    } catch (const cv::Exception& e) {
-        EXPECT_EQ(e.code, Error::StsNotImplemented);
+    for (Method method : {METHOD_MLESAC, METHOD_COV_RANSAC}) {
+        Params params;
+        params.method = method;
+        Mat mask;
+        Status status;
+        try {
+            findFundamentalMat(p1, p2, params, mask, status);
+            ADD_FAILURE() << "method " << method << " is not implemented yet and must say so";
+        } catch (const cv::Exception& e) {
+            EXPECT_EQ(e.code, Error::StsNotImplemented);
+            EXPECT_NE(std::string(e.what()).find("Params.method"), std::string::npos);
+        }
     }
 }
 
 TEST(Rcme_BadInput, too_few_points_is_a_status)
 {
-    for (const EntryPoint& entry : entryPoints()) {
-        SCOPED_TRACE(entry.name);
-        Mat mask;
-        const Status status =
-            entry.call(randomPoints(7, 1), randomPoints(7, 2), cameraMatrix(), mask);
-        EXPECT_EQ(status, STATUS_NOT_ENOUGH_POINTS);
-        ASSERT_EQ(mask.size(), Size(1, 7));
-        EXPECT_EQ(mask.type(), CV_8U);
-        EXPECT_EQ(countNonZero(mask), 0);
-    }
+    for (Method method : {METHOD_STANDARD, METHOD_RCME, METHOD_PRCME})
+        for (const EntryPoint& entry : entryPoints(method)) {
+            SCOPED_TRACE(entry.name);
+            Mat mask;
+            const Status status =
+                entry.call(randomPoints(7, 1), randomPoints(7, 2), cameraMatrix(), mask);
+            EXPECT_EQ(status, STATUS_NOT_ENOUGH_POINTS);
+            ASSERT_EQ(mask.size(), Size(1, 7));
+            EXPECT_EQ(mask.type(), CV_8U);
+            EXPECT_EQ(countNonZero(mask), 0);
+        }
 }
 
 TEST(Rcme_BadInput, identical_points_are_degenerate)
 {
     const Mat same(60, 2, CV_64F, Scalar(100));
-    for (const EntryPoint& entry : entryPoints()) {
-        SCOPED_TRACE(entry.name);
-        Mat mask;
-        const Status status = entry.call(same, same, cameraMatrix(), mask);
-        EXPECT_EQ(status, STATUS_DEGENERATE_CONFIGURATION);
-        ASSERT_EQ(mask.size(), Size(1, 60));
-        EXPECT_EQ(countNonZero(mask), 0);
-    }
+    for (Method method : {METHOD_STANDARD, METHOD_RCME, METHOD_PRCME})
+        for (const EntryPoint& entry : entryPoints(method)) {
+            SCOPED_TRACE(entry.name);
+            Mat mask;
+            const Status status = entry.call(same, same, cameraMatrix(), mask);
+            EXPECT_EQ(status, STATUS_DEGENERATE_CONFIGURATION);
+            ASSERT_EQ(mask.size(), Size(1, 60));
+            EXPECT_EQ(countNonZero(mask), 0);
+        }
 }
 
 TEST(Rcme_BadInput, collinear_points_are_degenerate)
@@ -224,27 +233,30 @@ TEST(Rcme_BadInput, collinear_points_are_degenerate)
         p2.at<double>(i, 0) = 15 + 6 * i;
         p2.at<double>(i, 1) = 40 + 2 * i;
     }
-    for (const EntryPoint& entry : entryPoints()) {
-        SCOPED_TRACE(entry.name);
-        Mat mask;
-        EXPECT_NE(entry.call(p1, p2, cameraMatrix(), mask), STATUS_SUCCESS);
-        EXPECT_EQ(mask.rows, 60);
-    }
+    for (Method method : {METHOD_STANDARD, METHOD_RCME, METHOD_PRCME})
+        for (const EntryPoint& entry : entryPoints(method)) {
+            SCOPED_TRACE(entry.name);
+            Mat mask;
+            EXPECT_NE(entry.call(p1, p2, cameraMatrix(), mask), STATUS_SUCCESS);
+            EXPECT_EQ(mask.rows, 60);
+        }
 }
 
 TEST(Rcme_BadInput, all_outliers_give_poor_quality_input)
 {
     // Independent random points: no epipolar geometry explains them better than chance.
     for (int seed = 0; seed < 5; ++seed) {
-        for (const EntryPoint& entry : entryPoints()) {
-            SCOPED_TRACE(entry.name);
-            Mat mask;
-            const Status status = entry.call(randomPoints(300, 2 * seed),
-                                             randomPoints(300, 2 * seed + 1), cameraMatrix(), mask);
-            EXPECT_EQ(status, STATUS_POOR_QUALITY_INPUT) << "seed " << seed;
-            ASSERT_EQ(mask.size(), Size(1, 300));
-            EXPECT_EQ(countNonZero(mask), 0);
-        }
+        for (Method method : {METHOD_STANDARD, METHOD_RCME, METHOD_PRCME})
+            for (const EntryPoint& entry : entryPoints(method)) {
+                SCOPED_TRACE(entry.name);
+                Mat mask;
+                const Status status =
+                    entry.call(randomPoints(300, 2 * seed), randomPoints(300, 2 * seed + 1),
+                               cameraMatrix(), mask);
+                EXPECT_EQ(status, STATUS_POOR_QUALITY_INPUT) << "seed " << seed;
+                ASSERT_EQ(mask.size(), Size(1, 300));
+                EXPECT_EQ(countNonZero(mask), 0);
+            }
     }
 }
 

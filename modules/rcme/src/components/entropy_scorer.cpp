@@ -79,7 +79,9 @@ public:
         if (quality)
             bestQualityRatio_ =
                 std::max(bestQualityRatio_, static_cast<double>(certainCount) / pointCount_);
-        score.isCandidate = quality && count >= minimalSupport_ && isStillCandidate(score);
+        // Chance support is judged on the noise-only band too: a loose model's wide bands catch
+        // random points by their width alone.
+        score.isCandidate = quality && certainCount >= minimalSupport_ && isStillCandidate(score);
         return score;
     }
 
