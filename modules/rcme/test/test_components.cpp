@@ -12,6 +12,7 @@
 #include "framework/components.hpp"
 #include "geometry/epipolar.hpp"
 #include "geometry/motion_parameterization.hpp"
+#include "test_internal_helpers.hpp"
 
 #include <opencv2/core/eigen.hpp>
 
@@ -19,26 +20,6 @@ namespace opencv_test {
 namespace {
 
 using namespace cv::rcme::detail;
-
-// The problem of a generated scene, inliers only (noise-free unless sigma is given).
-TwoViewData sceneData(const SyntheticScene& scene, bool calibrated, bool inliersOnly = true)
-{
-    TwoViewData data;
-    for (int i = 0; i < scene.points1.rows; ++i) {
-        if (inliersOnly && !scene.inlierMask.at<uchar>(i))
-            continue;
-        data.points1.emplace_back(scene.points1.at<double>(i, 0), scene.points1.at<double>(i, 1));
-        data.points2.emplace_back(scene.points2.at<double>(i, 0), scene.points2.at<double>(i, 1));
-    }
-    data.calibrated = calibrated;
-    if (calibrated) {
-        cv2eigen(scene.cameraMatrix, data.K);
-        data.Kinv = data.K.inverse();
-    }
-    data.sigma = 1.0;
-    data.threshold = 1.96;
-    return data;
-}
 
 SyntheticScene noiseFreeScene(int seed, double sigma = 0.0)
 {

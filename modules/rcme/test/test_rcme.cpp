@@ -10,6 +10,7 @@
 #include "framework/components.hpp"
 #include "geometry/epipolar.hpp"
 #include "geometry/motion_parameterization.hpp"
+#include "test_internal_helpers.hpp"
 
 #include <opencv2/core/eigen.hpp>
 #endif
@@ -98,22 +99,6 @@ TEST(Rcme_RCME, too_few_inliers_are_poor_quality_input)
     }
 }
 
-TEST(Rcme_RCME, collinear_and_identical_points_are_not_estimated)
-{
-    Mat p1(60, 2, CV_64F), p2(60, 2, CV_64F);
-    for (int i = 0; i < 60; ++i) {
-        p1.at<double>(i, 0) = 10 + 7 * i;
-        p1.at<double>(i, 1) = 20 + 3 * i;
-        p2.at<double>(i, 0) = 15 + 6 * i;
-        p2.at<double>(i, 1) = 40 + 2 * i;
-    }
-    const Mat K = (Mat_<double>(3, 3) << 500, 0, 320, 0, 500, 240, 0, 0, 1);
-    EXPECT_NE(estimateRelativeMotion(p1, p2, K, rcmeParams(0)).status, STATUS_SUCCESS);
-    const Mat same(60, 2, CV_64F, Scalar(100));
-    EXPECT_EQ(estimateRelativeMotion(same, same, K, rcmeParams(0)).status,
-              STATUS_DEGENERATE_CONFIGURATION);
-}
-
 TEST(Rcme_RCME, same_seed_same_result)
 {
     const SyntheticScene s = scene(SCENE_CORRIDOR, 4);
@@ -148,23 +133,6 @@ TEST(Rcme_RCME, exact_iterations_and_early_termination)
 
 using namespace cv::rcme::detail;
 
-TwoViewData calibratedData(const SyntheticScene& s, bool inliersOnly)
-{
-    TwoViewData data;
-    for (int i = 0; i < s.points1.rows; ++i) {
-        if (inliersOnly && !s.inlierMask.at<uchar>(i))
-            continue;
-        data.points1.emplace_back(s.points1.at<double>(i, 0), s.points1.at<double>(i, 1));
-        data.points2.emplace_back(s.points2.at<double>(i, 0), s.points2.at<double>(i, 1));
-    }
-    data.calibrated = true;
-    cv2eigen(s.cameraMatrix, data.K);
-    data.Kinv = data.K.inverse();
-    data.sigma = 1.0;
-    data.threshold = 1.96;
-    return data;
-}
-
 Model trueMotion(const SyntheticScene& s, const TwoViewData& data)
 {
     Model model;
@@ -179,8 +147,8 @@ Model trueMotion(const SyntheticScene& s, const TwoViewData& data)
 TEST(Rcme_Boxes, quality_test_sign_tight_passes_loose_fails)
 {
     const SyntheticScene s = scene(SCENE_GENERIC, 2, 0.5);
-    const TwoViewData data = calibratedData(s, false);
-    TwoViewData inliers = calibratedData(s, true);
+    const TwoViewData data = sceneData(s, true, false);
+    TwoViewData inliers = sceneData(s, true, true);
     Model tight = trueMotion(s, data);
     std::vector<int> all(inliers.points1.size());
     std::iota(all.begin(), all.end(), 0);
@@ -210,7 +178,7 @@ TEST(Rcme_Boxes, consistency_test_rejects_contaminated_samples)
     int cleanPassed = 0, contaminatedPassed = 0, cleanTried = 0, contaminatedTried = 0;
     for (int seed = 0; seed < 10; ++seed) {
         const SyntheticScene s = scene(SCENE_GENERIC, seed, 0.5);
-        const TwoViewData data = calibratedData(s, false);
+        const TwoViewData data = sceneData(s, true, false);
         std::vector<int> inlierIdx, outlierIdx;
         for (int i = 0; i < s.inlierMask.rows; ++i)
             (s.inlierMask.at<uchar>(i) ? inlierIdx : outlierIdx).push_back(i);
@@ -258,7 +226,7 @@ TEST(Rcme_Boxes, propagated_covariance_matches_monte_carlo)
     // that the figure checks the propagation and not the 8-point solver's basin of attraction,
     // which the loop's many hypotheses take care of).
     const SyntheticScene truth = scene(SCENE_GENERIC, 5, 1.0, 0.0);
-    TwoViewData exact = calibratedData(truth, true);
+    TwoViewData exact = sceneData(truth, true, true);
     const std::vector<int> sample = {3, 29, 61, 97, 130, 166, 201, 240};
     Model atTruth = trueMotion(truth, exact);
     ASSERT_TRUE(fitModelOn(exact, sample, 0, atTruth));
