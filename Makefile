@@ -6,15 +6,24 @@ BUILD_DIR ?= build
 JOBS ?= 2
 DEB_PACKAGES := build-essential cmake ninja-build ccache pkg-config libopencv-dev libeigen3-dev \
 	libgtest-dev pybind11-dev libbenchmark-dev python3-dev python3-numpy python3-opencv \
-	python3-pytest
+	python3-pytest dpkg-dev zlib1g-dev libpng-dev libjpeg-dev
+# INTREE=0 skips the in-tree step of make test (OpenCV built from source with the module, see
+# test/opencv_intree/build_opencv_with_rcme.sh; dpkg-dev and the zlib/png/jpeg headers are for it).
+INTREE ?= 1
 
-.PHONY: demo test build configure deps
+.PHONY: demo test test-intree build configure deps
 
 demo: build
 	$(BUILD_DIR)/bin/rcme_two_view_demo --out $(BUILD_DIR)/demo/two_view_demo.png
 
 test: build
 	cd $(BUILD_DIR) && ctest --output-on-failure -j$(JOBS)
+ifneq ($(INTREE),0)
+	test/opencv_intree/build_opencv_with_rcme.sh --jobs $(JOBS)
+endif
+
+test-intree: deps
+	test/opencv_intree/build_opencv_with_rcme.sh --jobs $(JOBS)
 
 build: configure
 	cmake --build $(BUILD_DIR) -j$(JOBS)
