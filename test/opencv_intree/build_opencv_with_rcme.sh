@@ -273,7 +273,8 @@ unset PYTHONHOME || true
 step "Checking that $PYTHON imports the in-tree cv2 with rcme"
 "$PYTHON" - "$BUILD_DIR" "$MODULES_DIR" <<'EOF'
 import os, sys
-build, modules = (os.path.realpath(p) for p in sys.argv[1:3])
+build = os.path.realpath(sys.argv[1])
+modules = {sys.argv[2], os.path.realpath(sys.argv[2])}  # as given to CMake, and resolved
 import cv2
 native = getattr(getattr(cv2, "_native", None), "__file__", "?")
 print("cv2.__file__:", cv2.__file__)
@@ -288,8 +289,10 @@ if not libs or not all(under(p) for p in libs):
     errors.append("cv2 runs with a libopencv_core from outside %s" % build)
 if not hasattr(cv2, "rcme"):
     errors.append("cv2 has no rcme")
-if modules not in cv2.getBuildInformation():
-    errors.append("cv2 was not built with the extra modules of %s" % modules)
+extra = [line.split(":", 1)[1].strip() for line in cv2.getBuildInformation().splitlines()
+         if "Location (extra):" in line]
+if not set(extra) & modules:
+    errors.append("cv2 was not built with the extra modules of %s" % sys.argv[2])
 if errors:
     sys.exit("error: " + "; ".join(errors))
 print("cv2.rcme:", len([n for n in dir(cv2.rcme) if not n.startswith("_")]), "names")
