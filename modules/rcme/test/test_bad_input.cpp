@@ -187,7 +187,8 @@ TEST(Rcme_BadInput, methods_of_later_milestones_say_not_implemented)
         Status status;
         try {
             findFundamentalMat(p1, p2, params, mask, status);
-            ADD_FAILURE() << "method " << method << " is not implemented yet and must say so";
+            ADD_FAILURE() << "method " << static_cast<int>(method)
+                          << " is not implemented yet and must say so";
         } catch (const cv::Exception& e) {
             EXPECT_EQ(e.code, Error::StsNotImplemented);
             EXPECT_NE(std::string(e.what()).find("Params.method"), std::string::npos);

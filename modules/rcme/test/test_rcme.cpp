@@ -56,8 +56,8 @@ TEST(Rcme_RCME, recovers_the_motion_of_generic_scenes)
         }
         ASSERT_FALSE(errors.empty());
         std::sort(errors.begin(), errors.end());
-        EXPECT_LT(errors[errors.size() / 2], 0.5) << "method " << method;
-        EXPECT_LE(failures, 2) << "method " << method;
+        EXPECT_LT(errors[errors.size() / 2], 0.5) << "method " << static_cast<int>(method);
+        EXPECT_LE(failures, 2) << "method " << static_cast<int>(method);
     }
 }
 
