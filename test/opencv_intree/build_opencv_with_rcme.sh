@@ -43,7 +43,9 @@ EOF
 REPO_DIR="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
 MODULES_DIR="$REPO_DIR/modules"
 PY_TEST_DIR="$MODULES_DIR/rcme/misc/python/test"
-CACHE_ROOT="${RCME_OPENCV_CACHE:-${XDG_CACHE_HOME:-$HOME/.cache}/rcme-opencv}"
+# HOME may be unset in a bare CI environment (set -u would stop on it): fall back to passwd.
+HOME_DIR="${HOME:-$(getent passwd "$(id -u)" | cut -d: -f6)}"
+CACHE_ROOT="${RCME_OPENCV_CACHE:-${XDG_CACHE_HOME:-$HOME_DIR/.cache}/rcme-opencv}"
 
 OPENCV_SRC=""
 BUILD_DIR=""
