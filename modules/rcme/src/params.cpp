@@ -11,7 +11,8 @@ Params::Params()
       threshold(0.0), confidence(0.99), maxIterations(1000), exactIterations(false),
       randomGeneratorState(0), refine(true), refineIterations(20), alpha(0.05),
       entropyThreshold(1.27), inlierRatioFactor(0.9), priorInlierRatio(0.0), consistencyDof(1),
-      sampleFitIterations(5), sampleLeverage(false), earlyTerminationEntropy(0.0)
+      sampleFitIterations(5), sampleLeverage(false), earlyTerminationEntropy(0.0),
+      localOptimization(false)
 {
 }
 

@@ -305,3 +305,33 @@ TEST(Rcme_Standard, params_from_usac_params)
 
 } // namespace
 } // namespace opencv_test
+
+namespace opencv_test {
+namespace {
+
+TEST(Rcme_Standard, local_optimization_gathers_more_inliers)
+{
+    // With the final refinement off, what the loop selects is what comes out: LO's refits of the
+    // candidates recover more of the true inliers (measured: mean recall 0.49 -> 0.57).
+    double recall[2] = {0, 0};
+    for (int seed = 0; seed < 20; ++seed) {
+        const SyntheticScene scene = genericScene(seed, 0.4);
+        for (int lo = 0; lo < 2; ++lo) {
+            Params params = standardParams(seed);
+            params.refine = false;
+            params.localOptimization = lo == 1;
+            const Report r =
+                estimateRelativeMotion(scene.points1, scene.points2, noArray(), params);
+            if (r.status != STATUS_SUCCESS)
+                continue;
+            int found = 0;
+            for (int i = 0; i < r.mask.rows; ++i)
+                found += r.mask.at<uchar>(i) && scene.inlierMask.at<uchar>(i);
+            recall[lo] += static_cast<double>(found) / countNonZero(scene.inlierMask) / 20;
+        }
+    }
+    EXPECT_GT(recall[1], recall[0] + 0.04);
+}
+
+} // namespace
+} // namespace opencv_test

@@ -132,6 +132,8 @@ struct EstimatorComponents
     std::unique_ptr<Scorer> scorer;
     std::unique_ptr<Termination> termination;
     std::unique_ptr<Refiner> refiner; //!< null when refinement is off
+    //! Refits new candidates on their inliers (LO-RANSAC); null when local optimisation is off.
+    std::unique_ptr<Refiner> localOptimizer;
 };
 
 /** The inlier count that chance alone exceeds with probability at most 5 % over a whole run: a
@@ -154,6 +156,15 @@ std::unique_ptr<Termination> createAdaptiveTermination(double confidence, int ma
                                                        int sampleSize);
 std::unique_ptr<Termination> createExactTermination(int iterations);
 std::unique_ptr<Refiner> createGoldStandardRefiner(int maxIterations);
+
+//! 7-point solver for F (Hartley & Zisserman 11.1.2): up to three rank-2 F per sample, exact
+//! (7 parameters for 7 DoF). With calibrated data the solutions are projected to E when
+//! `essentialHypotheses` is set, like the 8-point solver.
+std::unique_ptr<MinimalSolver> createSevenPointSolver(bool essentialHypotheses);
+//! MLESAC's scorer (Torr & Zisserman 2000): negative log-likelihood of a Gaussian-inlier,
+//! uniform-outlier mixture of the Sampson distances, mixing weight by a few EM steps.
+std::unique_ptr<Scorer> createMlesacScorer(const TwoViewData& data, const Params& params,
+                                           int sampleSize);
 
 // RCME's boxes (doc/algorithm.md).
 std::unique_ptr<MinimalSolver>

@@ -10,6 +10,9 @@ namespace cv {
 namespace rcme {
 namespace detail {
 
+// A few steps suffice: the refit only has to reach its basin's bottom, and it runs often.
+constexpr int kLocalOptimizationIterations = 5;
+
 EstimatorComponents createEstimator(const Params& params, const TwoViewData& data)
 {
     EstimatorComponents c;
@@ -47,6 +50,8 @@ EstimatorComponents createEstimator(const Params& params, const TwoViewData& dat
     }
     if (params.refine && params.refineIterations > 0)
         c.refiner = createGoldStandardRefiner(params.refineIterations);
+    if (params.localOptimization)
+        c.localOptimizer = createGoldStandardRefiner(kLocalOptimizationIterations);
     return c;
 }
 

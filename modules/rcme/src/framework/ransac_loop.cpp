@@ -69,6 +69,21 @@ bool decideMotionOnInliers(const TwoViewData& data, EstimatorComponents& c, Rans
     return true;
 }
 
+// LO-RANSAC's step: a new candidate refitted on its own inliers competes as a candidate too (a
+// minimal sample's hypothesis is noisy; its refit usually gathers more inliers, and the same
+// inliers with a better-determined model).
+void optimizeLocally(const TwoViewData& data, EstimatorComponents& c, const Model& candidate,
+                     CandidateSet& candidates, std::vector<uchar>& inliers)
+{
+    Model refit = candidate;
+    c.scorer->classify(data, refit, inliers);
+    if (!c.localOptimizer->refine(data, inliers, refit))
+        return;
+    const Score score = c.scorer->score(data, refit);
+    if (score.isCandidate)
+        candidates.add(refit, score);
+}
+
 } // namespace
 
 RansacResult runRansac(const TwoViewData& data, EstimatorComponents& c)
@@ -87,6 +102,7 @@ RansacResult runRansac(const TwoViewData& data, EstimatorComponents& c)
     std::vector<Model> models;
     models.reserve(static_cast<size_t>(c.solver->maxSolutions()));
     CandidateSet candidates;
+    std::vector<uchar> inliers; // local optimisation's buffer, reused
     int iteration = 0;
     for (; iteration < c.termination->iterationBound(); ++iteration) {
         c.sampler->generateSample(iteration, sample);
@@ -100,6 +116,8 @@ RansacResult runRansac(const TwoViewData& data, EstimatorComponents& c)
             const Score score = c.scorer->score(data, model);
             if (!score.isCandidate || !candidates.add(model, score))
                 continue;
+            if (c.localOptimizer)
+                optimizeLocally(data, c, model, candidates, inliers);
             if (const CandidateSet::Candidate* best = candidates.best(*c.scorer))
                 c.termination->update(best->score, n);
         }

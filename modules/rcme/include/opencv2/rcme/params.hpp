@@ -129,6 +129,10 @@ struct CV_EXPORTS_W_SIMPLE Params
     /** RCME's early termination: stop once a candidate's mean excess entropy is at most this
     (nats, as entropyThreshold); <= 0 disables it. Ignored when exactIterations is set. */
     CV_PROP_RW double earlyTerminationEntropy;
+    /** Local optimisation (LO-RANSAC @cite Chum2003LORANSAC): each hypothesis that enters the
+    candidate set is refitted on its inliers (a few Gauss-Newton steps) and the refit competes as
+    a candidate too. Off by default, as in the paper. */
+    CV_PROP_RW bool localOptimization;
 };
 
 /** @brief Everything an estimation produced, for callers who want more than the model.

@@ -541,7 +541,9 @@ PYBIND11_MODULE(rcme, m)
         .plain("sampleLeverage", &Params::sampleLeverage,
                "RCME: leverage-corrected sample variance in the consistency test; default False")
         .plain("earlyTerminationEntropy", &Params::earlyTerminationEntropy,
-               "RCME: stop once a candidate's mean excess entropy is at most this; <= 0 off");
+               "RCME: stop once a candidate's mean excess entropy is at most this; <= 0 off")
+        .plain("localOptimization", &Params::localOptimization,
+               "refit new candidates on their inliers (LO-RANSAC); default False");
     paramsFields.addKeywordInit("Params");
     paramsFields.addRepr("Params");
 
