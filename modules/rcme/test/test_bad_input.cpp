@@ -177,28 +177,37 @@ TEST(Rcme_BadInput, bad_params_throw_naming_the_field)
     }
 }
 
-TEST(Rcme_BadInput, methods_of_later_milestones_say_not_implemented)
+TEST(Rcme_BadInput, components_of_later_milestones_say_not_implemented)
 {
     const Mat p1 = randomPoints(50, 1), p2 = randomPoints(50, 2);
-    for (Method method : {METHOD_MLESAC, METHOD_COV_RANSAC}) {
+    struct Case
+    {
+        const char* field;
+        std::function<void(Params&)> set;
+    };
+    const std::vector<Case> cases = {
+        {"Params.sampler", [](Params& p) { p.sampler = SAMPLER_PROSAC; }},
+        {"Params.solver", [](Params& p) { p.solver = SOLVER_FIVE_POINT; }},
+    };
+    for (const Case& c : cases) {
         Params params;
-        params.method = method;
+        c.set(params);
         Mat mask;
         Status status;
         try {
             findFundamentalMat(p1, p2, params, mask, status);
-            ADD_FAILURE() << "method " << static_cast<int>(method)
-                          << " is not implemented yet and must say so";
+            ADD_FAILURE() << c.field << " is not implemented yet and must say so";
         } catch (const cv::Exception& e) {
             EXPECT_EQ(e.code, Error::StsNotImplemented);
-            EXPECT_NE(std::string(e.what()).find("Params.method"), std::string::npos);
+            EXPECT_NE(std::string(e.what()).find(c.field), std::string::npos);
         }
     }
 }
 
 TEST(Rcme_BadInput, too_few_points_is_a_status)
 {
-    for (Method method : {METHOD_STANDARD, METHOD_RCME, METHOD_PRCME})
+    for (Method method :
+         {METHOD_STANDARD, METHOD_RCME, METHOD_PRCME, METHOD_MLESAC, METHOD_COV_RANSAC})
         for (const EntryPoint& entry : entryPoints(method)) {
             SCOPED_TRACE(entry.name);
             Mat mask;
@@ -214,7 +223,8 @@ TEST(Rcme_BadInput, too_few_points_is_a_status)
 TEST(Rcme_BadInput, identical_points_are_degenerate)
 {
     const Mat same(60, 2, CV_64F, Scalar(100));
-    for (Method method : {METHOD_STANDARD, METHOD_RCME, METHOD_PRCME})
+    for (Method method :
+         {METHOD_STANDARD, METHOD_RCME, METHOD_PRCME, METHOD_MLESAC, METHOD_COV_RANSAC})
         for (const EntryPoint& entry : entryPoints(method)) {
             SCOPED_TRACE(entry.name);
             Mat mask;
@@ -234,7 +244,8 @@ TEST(Rcme_BadInput, collinear_points_are_degenerate)
         p2.at<double>(i, 0) = 15 + 6 * i;
         p2.at<double>(i, 1) = 40 + 2 * i;
     }
-    for (Method method : {METHOD_STANDARD, METHOD_RCME, METHOD_PRCME})
+    for (Method method :
+         {METHOD_STANDARD, METHOD_RCME, METHOD_PRCME, METHOD_MLESAC, METHOD_COV_RANSAC})
         for (const EntryPoint& entry : entryPoints(method)) {
             SCOPED_TRACE(entry.name);
             Mat mask;
@@ -247,7 +258,8 @@ TEST(Rcme_BadInput, all_outliers_give_poor_quality_input)
 {
     // Independent random points: no epipolar geometry explains them better than chance.
     for (int seed = 0; seed < 5; ++seed) {
-        for (Method method : {METHOD_STANDARD, METHOD_RCME, METHOD_PRCME})
+        for (Method method :
+             {METHOD_STANDARD, METHOD_RCME, METHOD_PRCME, METHOD_MLESAC, METHOD_COV_RANSAC})
             for (const EntryPoint& entry : entryPoints(method)) {
                 SCOPED_TRACE(entry.name);
                 Mat mask;

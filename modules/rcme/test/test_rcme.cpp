@@ -282,3 +282,32 @@ TEST(Rcme_Boxes, propagated_covariance_matches_monte_carlo)
 
 } // namespace
 } // namespace opencv_test
+
+namespace opencv_test {
+namespace {
+
+TEST(Rcme_Baselines, mlesac_and_cov_ransac_recover_the_motion_of_generic_scenes)
+{
+    for (Method method : {METHOD_MLESAC, METHOD_COV_RANSAC}) {
+        int failures = 0;
+        std::vector<double> errors;
+        for (int seed = 0; seed < 20; ++seed) {
+            const SyntheticScene s = scene(SCENE_GENERIC, seed);
+            const Report r = estimateRelativeMotion(s.points1, s.points2, s.cameraMatrix,
+                                                    rcmeParams(seed, method));
+            if (r.status != STATUS_SUCCESS) {
+                ++failures;
+                continue;
+            }
+            errors.push_back(compareMotion(r.R, r.t, s.R, s.t).rotationDeg);
+            EXPECT_TRUE(cvIsNaN(r.meanEntropy)); // only RCME scores entropy
+        }
+        ASSERT_FALSE(errors.empty());
+        std::sort(errors.begin(), errors.end());
+        EXPECT_LT(errors[errors.size() / 2], 0.5) << "method " << static_cast<int>(method);
+        EXPECT_LE(failures, 2) << "method " << static_cast<int>(method);
+    }
+}
+
+} // namespace
+} // namespace opencv_test

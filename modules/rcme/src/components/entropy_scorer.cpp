@@ -43,24 +43,18 @@ public:
     Score score(const TwoViewData& data, const Model& model) override
     {
         Score score;
-        if (model.uncertaintyDof == 0)
-            return score;
-        const ResidualUncertainty uncertainty(model, sigma_);
         const double sigmaSquared = sigma_ * sigma_;
         int count = 0, certainCount = 0;
         double sum = 0, sumSquares = 0;
-        for (size_t i = 0; i < data.points1.size(); ++i) {
-            double distanceSquared = 0, variance = 0;
-            uncertainty.evaluate(data.points1[i], data.points2[i], false, distanceSquared,
-                                 variance);
-            if (!(distanceSquared <= inlierBound_ * variance))
-                continue;
-            certainCount += distanceSquared <= inlierBound_ * sigmaSquared;
-            const double excessEntropy = 0.5 * std::log(variance / sigmaSquared);
-            ++count;
-            sum += excessEntropy;
-            sumSquares += excessEntropy * excessEntropy;
-        }
+        forEachUncertainInlier(data, model, sigma_, inlierBound_,
+                               [&](size_t, double distanceSquared, double variance) {
+                                   certainCount += distanceSquared <= inlierBound_ * sigmaSquared;
+                                   const double excessEntropy =
+                                       0.5 * std::log(variance / sigmaSquared);
+                                   ++count;
+                                   sum += excessEntropy;
+                                   sumSquares += excessEntropy * excessEntropy;
+                               });
         score.inlierCount = count;
         if (count < 2)
             return score;
@@ -93,16 +87,7 @@ public:
 
     void classify(const TwoViewData& data, const Model& model, std::vector<uchar>& mask) override
     {
-        mask.assign(data.points1.size(), 0);
-        if (model.uncertaintyDof == 0)
-            return;
-        const ResidualUncertainty uncertainty(model, sigma_);
-        for (size_t i = 0; i < mask.size(); ++i) {
-            double distanceSquared = 0, variance = 0;
-            uncertainty.evaluate(data.points1[i], data.points2[i], false, distanceSquared,
-                                 variance);
-            mask[i] = distanceSquared <= inlierBound_ * variance;
-        }
+        classifyByUncertainty(data, model, sigma_, inlierBound_, mask);
     }
 
 private:

@@ -10,12 +10,8 @@ namespace detail {
 
 int minimalSupport(const TwoViewData& data, double threshold, int sampleSize, int maxIterations)
 {
-    Eigen::Vector2d lo = data.points2.front(), hi = data.points2.front();
-    for (const auto& x : data.points2) {
-        lo = lo.cwiseMin(x);
-        hi = hi.cwiseMax(x);
-    }
-    const Eigen::Vector2d extent = (hi - lo).cwiseMax(Eigen::Vector2d::Constant(threshold));
+    const Eigen::Vector2d extent =
+        boundingBoxSize(data.points2).cwiseMax(Eigen::Vector2d::Constant(threshold));
     const double band = 2.0 * std::sqrt(2.0) * threshold * extent.norm();
     const double chance = std::min(1.0, band / (extent.x() * extent.y()));
     const double level = 0.05 / std::max(1, maxIterations);

@@ -36,6 +36,33 @@ private:
     double sigmaSquared_;
 };
 
+/** Calls visit(i, distanceSquared, variance) for every point that is an inlier of `model` by
+its propagated uncertainty, d^2 <= bound * v (the paper's eq. 4, Cov-RANSAC's test); for no
+point when the model has no uncertainty. */
+template <class Visit>
+void forEachUncertainInlier(const TwoViewData& data, const Model& model, double sigma, double bound,
+                            Visit&& visit)
+{
+    if (model.uncertaintyDof == 0)
+        return;
+    const ResidualUncertainty uncertainty(model, sigma);
+    for (size_t i = 0; i < data.points1.size(); ++i) {
+        double distanceSquared = 0, variance = 0;
+        uncertainty.evaluate(data.points1[i], data.points2[i], false, distanceSquared, variance);
+        if (distanceSquared <= bound * variance)
+            visit(i, distanceSquared, variance);
+    }
+}
+
+//! The mask of forEachUncertainInlier's points (resized to data.size()).
+inline void classifyByUncertainty(const TwoViewData& data, const Model& model, double sigma,
+                                  double bound, std::vector<uchar>& mask)
+{
+    mask.assign(data.points1.size(), 0);
+    forEachUncertainInlier(data, model, sigma, bound,
+                           [&](size_t i, double, double) { mask[i] = 1; });
+}
+
 } // namespace detail
 } // namespace rcme
 } // namespace cv

@@ -166,6 +166,10 @@ std::unique_ptr<MinimalSolver> createSevenPointSolver(bool essentialHypotheses);
 std::unique_ptr<Scorer> createMlesacScorer(const TwoViewData& data, const Params& params,
                                            int sampleSize);
 
+//! Cov-RANSAC's scorer: inliers by propagated uncertainty, most inliers wins.
+std::unique_ptr<Scorer> createCovarianceInlierScorer(const TwoViewData& data, const Params& params,
+                                                     int sampleSize);
+
 // RCME's boxes (doc/algorithm.md).
 std::unique_ptr<MinimalSolver>
 createUncertainModelInstantiation(std::unique_ptr<MinimalSolver> solver, int fitIterations);

@@ -16,11 +16,13 @@ constexpr int kLocalOptimizationIterations = 5;
 EstimatorComponents createEstimator(const Params& params, const TwoViewData& data)
 {
     EstimatorComponents c;
-    const bool rcme = params.method == METHOD_RCME || params.method == METHOD_PRCME;
-    // RCME needs a motion per hypothesis when K is known (its covariance lives in the motion's
-    // tangent space); Standard scores rank-2 F and makes the motion from the selected model.
-    c.solver = createEightPointSolver(/*essentialHypotheses=*/rcme);
-    if (rcme)
+    const bool uncertain = params.method == METHOD_RCME || params.method == METHOD_PRCME ||
+                           params.method == METHOD_COV_RANSAC;
+    // The methods that propagate uncertainty need a motion per hypothesis when K is known (its
+    // covariance lives in the motion's tangent space); Standard scores rank-2 F and makes the
+    // motion from the selected model.
+    c.solver = createEightPointSolver(/*essentialHypotheses=*/uncertain);
+    if (uncertain)
         c.solver =
             createUncertainModelInstantiation(std::move(c.solver), params.sampleFitIterations);
     const int m = c.solver->sampleSize();
@@ -44,6 +46,12 @@ EstimatorComponents createEstimator(const Params& params, const TwoViewData& dat
         if (!params.exactIterations)
             c.termination =
                 createEntropyTermination(std::move(c.termination), params.earlyTerminationEntropy);
+        break;
+    case METHOD_MLESAC:
+        c.scorer = createMlesacScorer(data, params, m);
+        break;
+    case METHOD_COV_RANSAC:
+        c.scorer = createCovarianceInlierScorer(data, params, m);
         break;
     default:
         CV_Error(Error::StsNotImplemented, "Params.method: not implemented yet");

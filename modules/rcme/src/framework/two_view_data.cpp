@@ -113,11 +113,9 @@ void validateParams(const Params& p)
     case METHOD_STANDARD:
     case METHOD_RCME:
     case METHOD_PRCME:
-        break;
     case METHOD_MLESAC:
     case METHOD_COV_RANSAC:
-        CV_Error(Error::StsNotImplemented,
-                 "Params.method: MLESAC and Cov-RANSAC are not implemented yet");
+        break;
     default:
         CV_Error(Error::StsBadArg,
                  cv::format("Params.method: unknown value %d", static_cast<int>(p.method)));
@@ -179,6 +177,18 @@ TwoViewData makeTwoViewData(InputArray points1, InputArray points2, InputArray c
     data.sigma = params.sigma;
     data.threshold = inlierThreshold(params);
     return data;
+}
+
+Eigen::Vector2d boundingBoxSize(const std::vector<Eigen::Vector2d>& points)
+{
+    if (points.empty())
+        return Eigen::Vector2d::Zero();
+    Eigen::Vector2d lo = points.front(), hi = points.front();
+    for (const auto& x : points) {
+        lo = lo.cwiseMin(x);
+        hi = hi.cwiseMax(x);
+    }
+    return hi - lo;
 }
 
 void writeMask(const std::vector<uchar>& mask, OutputArray out)

@@ -47,6 +47,9 @@ TwoViewData makeTwoViewData(InputArray points1, InputArray points2, InputArray c
 //! The inlier threshold in pixels: Params::threshold, or 1.96 sigma when that is <= 0.
 double inlierThreshold(const Params& params);
 
+//! Width and height of the points' bounding box.
+Eigen::Vector2d boundingBoxSize(const std::vector<Eigen::Vector2d>& points);
+
 //! Writes an Nx1 CV_8U mask (the only mask layout rcme produces).
 void writeMask(const std::vector<uchar>& mask, OutputArray out);
 
