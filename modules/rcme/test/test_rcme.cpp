@@ -311,3 +311,60 @@ TEST(Rcme_Baselines, mlesac_and_cov_ransac_recover_the_motion_of_generic_scenes)
 
 } // namespace
 } // namespace opencv_test
+
+namespace opencv_test {
+namespace {
+
+TEST(Rcme_Baselines, seven_point_solver_for_every_method)
+{
+    for (Method method : {METHOD_STANDARD, METHOD_RCME, METHOD_MLESAC, METHOD_COV_RANSAC}) {
+        std::vector<double> errors;
+        for (int seed = 0; seed < 10; ++seed) {
+            const SyntheticScene s = scene(SCENE_GENERIC, seed);
+            Params params = rcmeParams(seed, method);
+            params.solver = SOLVER_SEVEN_POINT;
+            const Report r = estimateRelativeMotion(s.points1, s.points2, s.cameraMatrix, params);
+            if (r.status == STATUS_SUCCESS)
+                errors.push_back(compareMotion(r.R, r.t, s.R, s.t).rotationDeg);
+        }
+        ASSERT_GE(errors.size(), 8u) << "method " << static_cast<int>(method);
+        std::sort(errors.begin(), errors.end());
+        EXPECT_LT(errors[errors.size() / 2], 0.5) << "method " << static_cast<int>(method);
+    }
+}
+
+#ifdef RCME_STANDALONE_TESTS
+
+TEST(Rcme_Boxes, sprt_keeps_the_true_model_and_rejects_bad_ones_early)
+{
+    const SyntheticScene s = scene(SCENE_GENERIC, 12, 0.5);
+    const TwoViewData data = sceneData(s, true, false);
+    const TwoViewData inliers = sceneData(s, true, true);
+    // The true motion with the covariance a minimal sample would give it.
+    Model truth = trueMotion(s, data);
+    ASSERT_TRUE(fitModelOn(inliers, {0, 17, 35, 52, 70, 88, 105, 123}, 0, truth));
+    Model bad = truth;
+    bad.R = bad.R * rotationExp(Eigen::Vector3d(0.05, -0.04, 0.03));
+    bad.E = skew(bad.t) * bad.R;
+    bad.F = fundamentalFromEssential(bad.E, data.Kinv);
+
+    const Params params = rcmeParams(0, METHOD_COV_RANSAC);
+    int trueRejected = 0;
+    for (int trial = 0; trial < 1000; ++trial) {
+        auto sprt = createSprtVerifier(data, params, static_cast<uint64_t>(trial));
+        trueRejected += !sprt->isModelGood(data, {}, truth);
+    }
+    EXPECT_EQ(trueRejected, 0);
+
+    auto sprt = createSprtVerifier(data, params, 1);
+    for (int trial = 0; trial < 100; ++trial)
+        EXPECT_FALSE(sprt->isModelGood(data, {}, bad));
+    std::cout << "SPRT: " << sprtMeanPointsChecked(*sprt) << " of " << data.size()
+              << " points checked per bad hypothesis" << std::endl;
+    EXPECT_LT(sprtMeanPointsChecked(*sprt), 0.1 * data.size());
+}
+
+#endif // RCME_STANDALONE_TESTS
+
+} // namespace
+} // namespace opencv_test

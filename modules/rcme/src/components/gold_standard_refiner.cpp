@@ -178,7 +178,7 @@ bool fitModelOn(const TwoViewData& data, const std::vector<int>& indices, int ma
 {
     if (model.hasMotion) {
         CV_Assert(data.calibrated);
-        if (indices.size() <= static_cast<size_t>(MotionProblem::kDof))
+        if (indices.size() < static_cast<size_t>(MotionProblem::kDof))
             return false;
         MotionProblem problem{data.Kinv, model.R, model.t, model.R, model.t};
         levenbergMarquardt(data, indices, problem, maxIterations);
@@ -189,8 +189,8 @@ bool fitModelOn(const TwoViewData& data, const std::vector<int>& indices, int ma
         setUncertainty(data, indices, problem, model);
         return model.F.allFinite();
     }
-    // A 7-DoF F needs more than 7 constraints to be fitted at all.
-    if (indices.size() <= static_cast<size_t>(FundamentalProblem::kDof))
+    // A 7-DoF F needs 7 constraints (a 7-point sample determines it exactly).
+    if (indices.size() < static_cast<size_t>(FundamentalProblem::kDof))
         return false;
     FundamentalProblem problem;
     if (!normalizingTransform(data.points1, indices, problem.T1) ||

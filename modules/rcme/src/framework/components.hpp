@@ -166,6 +166,12 @@ std::unique_ptr<MinimalSolver> createSevenPointSolver(bool essentialHypotheses);
 std::unique_ptr<Scorer> createMlesacScorer(const TwoViewData& data, const Params& params,
                                            int sampleSize);
 
+//! SPRT (Matas & Chum 2005) on the propagated-uncertainty consistency test, adaptive epsilon and
+//! delta; points in a fixed pseudo-random order from `seed`.
+std::unique_ptr<ModelVerifier> createSprtVerifier(const TwoViewData& data, const Params& params,
+                                                  uint64_t seed);
+//! Mean number of points an SPRT verifier checked per hypothesis (0 for other verifiers).
+double sprtMeanPointsChecked(const ModelVerifier& verifier);
 //! Cov-RANSAC's scorer: inliers by propagated uncertainty, most inliers wins.
 std::unique_ptr<Scorer> createCovarianceInlierScorer(const TwoViewData& data, const Params& params,
                                                      int sampleSize);

@@ -21,7 +21,9 @@ EstimatorComponents createEstimator(const Params& params, const TwoViewData& dat
     // The methods that propagate uncertainty need a motion per hypothesis when K is known (its
     // covariance lives in the motion's tangent space); Standard scores rank-2 F and makes the
     // motion from the selected model.
-    c.solver = createEightPointSolver(/*essentialHypotheses=*/uncertain);
+    c.solver = params.solver == SOLVER_SEVEN_POINT
+                   ? createSevenPointSolver(/*essentialHypotheses=*/uncertain)
+                   : createEightPointSolver(/*essentialHypotheses=*/uncertain);
     if (uncertain)
         c.solver =
             createUncertainModelInstantiation(std::move(c.solver), params.sampleFitIterations);
@@ -51,6 +53,8 @@ EstimatorComponents createEstimator(const Params& params, const TwoViewData& dat
         c.scorer = createMlesacScorer(data, params, m);
         break;
     case METHOD_COV_RANSAC:
+        c.verifiers.push_back(
+            createSprtVerifier(data, params, static_cast<uint64_t>(params.randomGeneratorState)));
         c.scorer = createCovarianceInlierScorer(data, params, m);
         break;
     default:

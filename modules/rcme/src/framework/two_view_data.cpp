@@ -125,10 +125,10 @@ void validateParams(const Params& p)
     else if (p.sampler != SAMPLER_UNIFORM)
         CV_Error(Error::StsBadArg,
                  cv::format("Params.sampler: unknown value %d", static_cast<int>(p.sampler)));
-    if (p.solver == SOLVER_SEVEN_POINT || p.solver == SOLVER_FIVE_POINT)
+    if (p.solver == SOLVER_FIVE_POINT)
         CV_Error(Error::StsNotImplemented,
-                 "Params.solver: only SOLVER_EIGHT_POINT is implemented yet");
-    else if (p.solver != SOLVER_EIGHT_POINT)
+                 "Params.solver: SOLVER_FIVE_POINT is not implemented yet");
+    else if (p.solver != SOLVER_EIGHT_POINT && p.solver != SOLVER_SEVEN_POINT)
         CV_Error(Error::StsBadArg,
                  cv::format("Params.solver: unknown value %d", static_cast<int>(p.solver)));
     checkRange(std::isfinite(p.sigma) && p.sigma > 0, "Params.sigma must be positive and finite");

@@ -1,0 +1,186 @@
+// This file is part of the rcme module. It is subject to the license terms in the LICENSE file
+// found in the top-level directory of this distribution.
+
+// Box "model instantiation" of Fig. 1 with the 7-point algorithm (Hartley & Zisserman, sec.
+// 11.1.2): 7 correspondences for the 7 DoF of F, so the sample is fitted exactly and the
+// solver is not over-parameterized (the paper's model-sample consistency test does not apply).
+// The 7x9 system leaves a pencil of matrices, and det F = 0 picks up to three of them, all of
+// which are hypotheses. As with the 8-point solver, with a camera matrix the solutions can be
+// projected onto the essential manifold so that every hypothesis is a motion; that projection no
+// longer fits the sample exactly.
+
+#include "framework/components.hpp"
+#include "geometry/epipolar.hpp"
+
+namespace cv {
+namespace rcme {
+namespace detail {
+
+namespace {
+
+//! The adjugate's rows are cross products of the columns: adj(A) A = det(A) I.
+Eigen::Matrix3d adjugate(const Eigen::Matrix3d& A)
+{
+    Eigen::Matrix3d adj;
+    adj.row(0) = A.col(1).cross(A.col(2)).transpose();
+    adj.row(1) = A.col(2).cross(A.col(0)).transpose();
+    adj.row(2) = A.col(0).cross(A.col(1)).transpose();
+    return adj;
+}
+
+/** Real roots of x^3 + b x^2 + c x + d (at most three, written to `roots`; returns how many).
+Closed form on the depressed cubic, then Newton steps on the original polynomial for accuracy.
+A discriminant within rounding of zero is read as a double root rather than a complex pair, so
+that a double root is not lost. */
+int solveMonicCubic(double b, double c, double d, double roots[3])
+{
+    const double shift = b / 3;
+    const double p = c - b * shift;                       // y^3 + p y + q, x = y - b/3
+    const double q = (2 * shift * shift - c) * shift + d; // 2b^3/27 - bc/3 + d
+    const double halfQ = q / 2, thirdP = p / 3;
+    const double disc = halfQ * halfQ + thirdP * thirdP * thirdP;
+    const double scale = halfQ * halfQ + std::abs(thirdP * thirdP * thirdP);
+    int count = 0;
+    if (disc > 1e-12 * scale) {
+        // One real root; u^3 chosen without cancellation, y = u - p / (3u).
+        const double u = std::cbrt(-halfQ - std::copysign(std::sqrt(disc), halfQ));
+        roots[count++] = (u != 0 ? u - thirdP / u : 0.0) - shift;
+    } else if (thirdP < 0) {
+        // Three real roots (two of them possibly equal): y = 2 r cos(phi/3 - 2 pi k/3).
+        const double r = std::sqrt(-thirdP);
+        const double cosPhi = std::max(-1.0, std::min(1.0, -halfQ / (r * r * r)));
+        const double phi = std::acos(cosPhi);
+        for (int k = 0; k < 3; ++k)
+            roots[count++] = 2 * r * std::cos((phi - 2 * CV_PI * k) / 3) - shift;
+    } else {
+        roots[count++] = -shift; // p = q = 0: a triple root
+    }
+    for (int i = 0; i < count; ++i) {
+        double x = roots[i];
+        double value = ((x + b) * x + c) * x + d;
+        for (int step = 0; step < 3 && value != 0; ++step) {
+            const double slope = (3 * x + 2 * b) * x + c;
+            if (slope == 0)
+                break;
+            const double next = x - value / slope;
+            const double nextValue = ((next + b) * next + c) * next + d;
+            if (!(std::abs(nextValue) < std::abs(value)))
+                break;
+            x = next;
+            value = nextValue;
+        }
+        roots[i] = x;
+    }
+    // Drop repeats (a double root gives the same F twice).
+    int unique = 0;
+    for (int i = 0; i < count; ++i) {
+        bool repeated = false;
+        for (int j = 0; j < unique; ++j)
+            repeated =
+                repeated || std::abs(roots[i] - roots[j]) <= 1e-12 * (1 + std::abs(roots[j]));
+        if (!repeated)
+            roots[unique++] = roots[i];
+    }
+    return unique;
+}
+
+class SevenPointSolver final : public MinimalSolver
+{
+public:
+    explicit SevenPointSolver(bool essentialHypotheses) : essentialHypotheses_(essentialHypotheses)
+    {
+    }
+
+    int sampleSize() const override { return 7; }
+    int maxSolutions() const override { return 3; }
+    bool isOverParameterized() const override { return false; }
+
+    int estimate(const TwoViewData& data, const std::vector<int>& sample,
+                 std::vector<Model>& models) override
+    {
+        models.clear();
+        Eigen::Matrix3d T1, T2;
+        if (sample.size() != 7 || !normalizingTransform(data.points1, sample, T1) ||
+            !normalizingTransform(data.points2, sample, T2))
+            return 0;
+
+        // x2^T F x1 = 0 as a row of A times the row-major entries of F; A is padded with two
+        // zero rows to a square matrix so that the SVD gives the full null space.
+        Eigen::Matrix<double, 9, 9> A = Eigen::Matrix<double, 9, 9>::Zero();
+        for (int k = 0; k < 7; ++k) {
+            const size_t i = static_cast<size_t>(sample[static_cast<size_t>(k)]);
+            const Eigen::Vector3d a = T1 * homogeneous(data.points1[i]);
+            const Eigen::Vector3d b = T2 * homogeneous(data.points2[i]);
+            A.row(k) << b.x() * a.transpose(), b.y() * a.transpose(), a.transpose();
+        }
+        const Eigen::JacobiSVD<Eigen::Matrix<double, 9, 9>> svd(A, Eigen::ComputeFullV);
+        const Eigen::Matrix<double, 9, 1> sv = svd.singularValues();
+        // A third (near) null direction means the sample does not determine the pencil:
+        // coincident, collinear or otherwise degenerate points. Same ratio as the 8-point
+        // solver's, on singular values instead of eigenvalues of A^T A.
+        if (!(sv(6) > 1e-5 * sv(0)))
+            return 0;
+        Eigen::Matrix3d F1, F2;
+        const Eigen::Matrix<double, 9, 9>& V = svd.matrixV();
+        F1 << V(0, 7), V(1, 7), V(2, 7), V(3, 7), V(4, 7), V(5, 7), V(6, 7), V(7, 7), V(8, 7);
+        F2 << V(0, 8), V(1, 8), V(2, 8), V(3, 8), V(4, 8), V(5, 8), V(6, 8), V(7, 8), V(8, 8);
+
+        // det(a F1 + (1 - a) F2) = 0 is a cubic on the pencil, but in that parameterization a
+        // root can sit at (or near) infinity, where the leading coefficient vanishes. Instead the
+        // pencil is written Fb + x Fa with Fa the member of largest |det| among four directions
+        // 45 degrees apart (F1, F2 orthonormal): Fa is then no root, every root x is finite, and
+        // the leading coefficient det(Fa) is the largest of the four samples, so the cubic is
+        // well scaled (the four samples determine its four coefficients).
+        double bestDet = 0, bestAngle = 0;
+        for (int k = 0; k < 4; ++k) {
+            const double angle = k * CV_PI / 4;
+            const double det = (std::cos(angle) * F1 + std::sin(angle) * F2).determinant();
+            if (std::abs(det) > std::abs(bestDet)) {
+                bestDet = det;
+                bestAngle = angle;
+            }
+        }
+        // Every member singular (e.g. F1 and F2 share an epipole): the sample does not determine
+        // F. Members have unit norm, so |det| is at most 3^-1.5.
+        if (!(std::abs(bestDet) > 1e-12))
+            return 0;
+        const double c = std::cos(bestAngle), s = std::sin(bestAngle);
+        const Eigen::Matrix3d Fa = c * F1 + s * F2, Fb = c * F2 - s * F1;
+        // For 3x3: det(B + x A) = det B + x tr(adj(B) A) + x^2 tr(adj(A) B) + x^3 det A.
+        const double c0 = Fb.determinant();
+        const double c1 = (adjugate(Fb) * Fa).trace();
+        const double c2 = (adjugate(Fa) * Fb).trace();
+        const double c3 = Fa.determinant();
+        double roots[3];
+        const int rootCount = solveMonicCubic(c2 / c3, c1 / c3, c0 / c3, roots);
+
+        for (int r = 0; r < rootCount; ++r) {
+            const Eigen::Matrix3d Fn = Fb + roots[r] * Fa;
+            Model model;
+            if (data.calibrated && essentialHypotheses_) {
+                model.E = essentialFromFundamental(T2.transpose() * Fn * T1, data.K);
+                model.F = fundamentalFromEssential(model.E, data.Kinv);
+            } else {
+                model.F = normalizeFundamental(T2.transpose() * Fn * T1);
+            }
+            if (!model.F.allFinite() || !model.E.allFinite())
+                continue;
+            models.push_back(model);
+        }
+        return static_cast<int>(models.size());
+    }
+
+private:
+    bool essentialHypotheses_;
+};
+
+} // namespace
+
+std::unique_ptr<MinimalSolver> createSevenPointSolver(bool essentialHypotheses)
+{
+    return std::make_unique<SevenPointSolver>(essentialHypotheses);
+}
+
+} // namespace detail
+} // namespace rcme
+} // namespace cv
