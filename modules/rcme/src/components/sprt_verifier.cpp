@@ -13,6 +13,7 @@
 // checks, C: the expected log-ratio per point of a bad model). Consistency is the scorer's own
 // test (propagated uncertainty), so a hypothesis that passes is scored on the same terms.
 
+#include "components/random.hpp"
 #include "components/residual_uncertainty.hpp"
 #include "framework/components.hpp"
 #include "geometry/statistics.hpp"
@@ -38,15 +39,10 @@ public:
           order_(data.points1.size())
     {
         std::iota(order_.begin(), order_.end(), 0);
-        // A fixed pseudo-random order, so a run is reproducible (Fisher-Yates, SplitMix64).
+        // A fixed pseudo-random order, so a run is reproducible (Fisher-Yates).
         uint64_t state = seed ^ 0x5851F42D4C957F2Dull;
-        for (size_t i = order_.size(); i > 1; --i) {
-            state += 0x9E3779B97F4A7C15ull;
-            uint64_t z = state;
-            z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-            z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-            std::swap(order_[i - 1], order_[static_cast<size_t>((z ^ (z >> 31)) % i)]);
-        }
+        for (size_t i = order_.size(); i > 1; --i)
+            std::swap(order_[i - 1], order_[uniformBelow(state, static_cast<uint32_t>(i))]);
         updateThreshold();
     }
 

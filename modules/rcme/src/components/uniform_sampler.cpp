@@ -3,6 +3,7 @@
 
 // Box "random sampling" of Fig. 1: every m-subset of the n points equally likely.
 
+#include "components/random.hpp"
 #include "framework/components.hpp"
 
 namespace cv {
@@ -10,27 +11,6 @@ namespace rcme {
 namespace detail {
 
 namespace {
-
-// SplitMix64: a well-mixed 64-bit sequence, identical on every platform (unlike the
-// distributions of <random>), cheap to seed per iteration.
-uint64_t splitMix64(uint64_t& state)
-{
-    uint64_t z = (state += 0x9E3779B97F4A7C15ull);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    return z ^ (z >> 31);
-}
-
-// Uniform integer in [0, bound) without modulo bias (Lemire's multiply-and-reject).
-uint32_t uniformBelow(uint64_t& state, uint32_t bound)
-{
-    for (;;) {
-        const uint64_t product = (splitMix64(state) >> 32) * static_cast<uint64_t>(bound);
-        const uint32_t low = static_cast<uint32_t>(product);
-        if (low >= (static_cast<uint32_t>(-bound) % bound))
-            return static_cast<uint32_t>(product >> 32);
-    }
-}
 
 class UniformSampler final : public Sampler
 {
@@ -43,15 +23,9 @@ public:
 
     void generateSample(int iteration, std::vector<int>& sample) override
     {
-        uint64_t state = seed_ ^ (0xD1B54A32D192ED03ull * static_cast<uint64_t>(iteration + 1));
+        uint64_t state = iterationState(seed_, iteration);
         sample.resize(static_cast<size_t>(sampleSize_));
-        for (int k = 0; k < sampleSize_; ++k) {
-            int index;
-            do {
-                index = static_cast<int>(uniformBelow(state, pointCount_));
-            } while (std::find(sample.begin(), sample.begin() + k, index) != sample.begin() + k);
-            sample[static_cast<size_t>(k)] = index;
-        }
+        drawDistinct(state, pointCount_, 0, sample);
     }
 
 private:
