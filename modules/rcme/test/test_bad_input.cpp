@@ -164,6 +164,16 @@ TEST(Rcme_BadInput, bad_params_throw_naming_the_field)
         {"Params.inlierRatioFactor", [](Params& p) { p.inlierRatioFactor = 1.5; }},
         {"Params.priorInlierRatio", [](Params& p) { p.priorInlierRatio = 2; }},
         {"Params.consistencyDof", [](Params& p) { p.consistencyDof = 0; }},
+        {"Params.matchQuality",
+         [](Params& p) {
+             p.sampler = SAMPLER_PROSAC;
+             p.matchQuality = Mat(10, 1, CV_64F, Scalar(1)); // 50 points
+         }},
+        {"Params.matchQuality",
+         [](Params& p) {
+             p.sampler = SAMPLER_PROSAC;
+             p.matchQuality = Mat(50, 1, CV_64F, Scalar(NAN));
+         }},
         {"Params.sampleFitIterations", [](Params& p) { p.sampleFitIterations = -1; }},
         {"Params.earlyTerminationEntropy", [](Params& p) { p.earlyTerminationEntropy = NAN; }},
     };
@@ -186,7 +196,6 @@ TEST(Rcme_BadInput, components_of_later_milestones_say_not_implemented)
         std::function<void(Params&)> set;
     };
     const std::vector<Case> cases = {
-        {"Params.sampler", [](Params& p) { p.sampler = SAMPLER_PROSAC; }},
         {"Params.solver", [](Params& p) { p.solver = SOLVER_FIVE_POINT; }},
     };
     for (const Case& c : cases) {

@@ -370,3 +370,75 @@ TEST(Rcme_Boxes, sprt_keeps_the_true_model_and_rejects_bad_ones_early)
 
 } // namespace
 } // namespace opencv_test
+
+namespace opencv_test {
+namespace {
+
+TEST(Rcme_Baselines, prosac_uses_a_good_ranking)
+{
+    // Scores that rank the true matches first (with noise): PROSAC's first samples are clean,
+    // so 30 iterations at w = 0.3 suffice where uniform sampling (clean sample probability
+    // 0.3^8 per iteration) almost never finds a model.
+    int prosacSuccesses = 0, uniformSuccesses = 0;
+    for (int seed = 0; seed < 10; ++seed) {
+        const SyntheticScene s = scene(SCENE_GENERIC, seed, 0.3);
+        Mat quality(s.inlierMask.rows, 1, CV_64F);
+        RNG rng(seed + 7);
+        for (int i = 0; i < quality.rows; ++i)
+            quality.at<double>(i) = s.inlierMask.at<uchar>(i) + rng.uniform(0.0, 0.9);
+        Params params = rcmeParams(seed, METHOD_STANDARD);
+        params.exactIterations = true;
+        params.maxIterations = 30;
+        uniformSuccesses +=
+            estimateRelativeMotion(s.points1, s.points2, s.cameraMatrix, params).status ==
+            STATUS_SUCCESS;
+        params.sampler = SAMPLER_PROSAC;
+        params.matchQuality = quality;
+        const Report r = estimateRelativeMotion(s.points1, s.points2, s.cameraMatrix, params);
+        if (r.status == STATUS_SUCCESS && compareMotion(r.R, r.t, s.R, s.t).rotationDeg < 1.0)
+            ++prosacSuccesses;
+    }
+    EXPECT_GE(prosacSuccesses, 9);
+    EXPECT_LE(uniformSuccesses, 3);
+}
+
+#ifdef RCME_STANDALONE_TESTS
+
+TEST(Rcme_Boxes, prosac_draws_from_the_top_of_the_order_first)
+{
+    const int n = 200, m = 8;
+    std::vector<int> order(n);
+    std::iota(order.begin(), order.end(), 0);
+    std::reverse(order.begin(), order.end()); // the best point is index 199
+    auto sampler = createProsacSampler(order, m, 5);
+    std::vector<int> sample;
+    sampler->generateSample(0, sample); // T'_m = 1: exactly the m best
+    std::sort(sample.begin(), sample.end());
+    EXPECT_EQ(sample, std::vector<int>({192, 193, 194, 195, 196, 197, 198, 199}));
+    int worstRank = 0;
+    for (int it = 0; it < 100; ++it) {
+        sampler->generateSample(it, sample);
+        for (int i : sample)
+            worstRank = std::max(worstRank, n - 1 - i);
+    }
+    // T'_n grows by at least one per point, so iteration t < 100 draws from the top t + m
+    // points; and the set does grow.
+    EXPECT_LT(worstRank, 100 + m);
+    EXPECT_GT(worstRank, m);
+    std::vector<int> again;
+    createProsacSampler(order, m, 5)->generateSample(57, again);
+    sampler->generateSample(57, sample);
+    EXPECT_EQ(sample, again); // sample j depends only on (seed, j)
+    bool reachesBottom = false;
+    for (int it = 200000; it < 200100 && !reachesBottom; ++it) {
+        sampler->generateSample(it, sample);
+        for (int i : sample)
+            reachesBottom = reachesBottom || i < 50;
+    }
+    EXPECT_TRUE(reachesBottom); // past the schedule every point can be drawn
+}
+
+#endif // RCME_STANDALONE_TESTS
+
+} // namespace
+} // namespace opencv_test

@@ -147,6 +147,8 @@ int minimalSupport(const TwoViewData& data, double threshold, int sampleSize, in
 
 // Factories of the component implementations, one file each under components/.
 std::unique_ptr<Sampler> createUniformSampler(int pointCount, int sampleSize, uint64_t seed);
+//! PROSAC over `order` (point indices, best first); order.size() >= sampleSize.
+std::unique_ptr<Sampler> createProsacSampler(std::vector<int> order, int sampleSize, uint64_t seed);
 //! With `essentialHypotheses` and calibrated data, hypotheses are projected onto the essential
 //! manifold (E set); otherwise they are rank-2 F.
 std::unique_ptr<MinimalSolver> createEightPointSolver(bool essentialHypotheses);

@@ -6,9 +6,33 @@
 
 #include "framework/estimator_factory.hpp"
 
+#include <numeric>
+
 namespace cv {
 namespace rcme {
 namespace detail {
+
+// Point indices by decreasing match quality; without scores the points are taken as sorted.
+std::vector<int> qualityOrder(const Mat& quality, int pointCount)
+{
+    std::vector<int> order(static_cast<size_t>(pointCount));
+    std::iota(order.begin(), order.end(), 0);
+    if (quality.empty())
+        return order;
+    Mat scores;
+    if (quality.total() != static_cast<size_t>(pointCount) || quality.channels() != 1 ||
+        (quality.depth() != CV_32F && quality.depth() != CV_64F))
+        CV_Error(Error::StsBadArg,
+                 cv::format("Params.matchQuality must hold one CV_32F/CV_64F score per "
+                            "correspondence (%d)",
+                            pointCount));
+    quality.reshape(1, pointCount).convertTo(scores, CV_64F);
+    if (!checkRange(scores))
+        CV_Error(Error::StsBadArg, "Params.matchQuality must be finite");
+    std::stable_sort(order.begin(), order.end(),
+                     [&](int a, int b) { return scores.at<double>(a) > scores.at<double>(b); });
+    return order;
+}
 
 // A few steps suffice: the refit only has to reach its basin's bottom, and it runs often.
 constexpr int kLocalOptimizationIterations = 5;
@@ -28,9 +52,13 @@ EstimatorComponents createEstimator(const Params& params, const TwoViewData& dat
         c.solver =
             createUncertainModelInstantiation(std::move(c.solver), params.sampleFitIterations);
     const int m = c.solver->sampleSize();
-    if (data.size() >= m)
-        c.sampler = createUniformSampler(data.size(), m,
-                                         static_cast<uint64_t>(params.randomGeneratorState));
+    if (data.size() >= m) {
+        const uint64_t seed = static_cast<uint64_t>(params.randomGeneratorState);
+        c.sampler =
+            params.sampler == SAMPLER_PROSAC
+                ? createProsacSampler(qualityOrder(params.matchQuality, data.size()), m, seed)
+                : createUniformSampler(data.size(), m, seed);
+    }
     c.termination = params.exactIterations
                         ? createExactTermination(params.maxIterations)
                         : createAdaptiveTermination(params.confidence, params.maxIterations, m);

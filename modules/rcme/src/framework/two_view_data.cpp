@@ -120,9 +120,7 @@ void validateParams(const Params& p)
         CV_Error(Error::StsBadArg,
                  cv::format("Params.method: unknown value %d", static_cast<int>(p.method)));
     }
-    if (p.sampler == SAMPLER_PROSAC)
-        CV_Error(Error::StsNotImplemented, "Params.sampler: PROSAC is not implemented yet");
-    else if (p.sampler != SAMPLER_UNIFORM)
+    if (p.sampler != SAMPLER_UNIFORM && p.sampler != SAMPLER_PROSAC)
         CV_Error(Error::StsBadArg,
                  cv::format("Params.sampler: unknown value %d", static_cast<int>(p.sampler)));
     if (p.solver == SOLVER_FIVE_POINT)

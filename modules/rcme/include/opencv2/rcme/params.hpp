@@ -133,6 +133,10 @@ struct CV_EXPORTS_W_SIMPLE Params
     candidate set is refitted on its inliers (a few Gauss-Newton steps) and the refit competes as
     a candidate too. Off by default, as in the paper. */
     CV_PROP_RW bool localOptimization;
+    /** For #SAMPLER_PROSAC: one score per correspondence, higher is better (e.g. the negated
+    ratio of the two best descriptor distances), CV_32F or CV_64F. Empty (default): the points
+    are taken as already sorted by decreasing quality, as OpenCV's USAC PROSAC assumes. */
+    CV_PROP_RW Mat matchQuality;
 };
 
 /** @brief Everything an estimation produced, for callers who want more than the model.

@@ -543,7 +543,9 @@ PYBIND11_MODULE(rcme, m)
         .plain("earlyTerminationEntropy", &Params::earlyTerminationEntropy,
                "RCME: stop once a candidate's mean excess entropy is at most this; <= 0 off")
         .plain("localOptimization", &Params::localOptimization,
-               "refit new candidates on their inliers (LO-RANSAC); default False");
+               "refit new candidates on their inliers (LO-RANSAC); default False")
+        .mat("matchQuality", &Params::matchQuality,
+             "SAMPLER_PROSAC: one score per correspondence, higher is better; None: sorted");
     paramsFields.addKeywordInit("Params");
     paramsFields.addRepr("Params");
 
