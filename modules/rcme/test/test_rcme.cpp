@@ -315,22 +315,26 @@ TEST(Rcme_Baselines, mlesac_and_cov_ransac_recover_the_motion_of_generic_scenes)
 namespace opencv_test {
 namespace {
 
-TEST(Rcme_Baselines, seven_point_solver_for_every_method)
+TEST(Rcme_Baselines, seven_and_five_point_solvers_for_every_method)
 {
-    for (Method method : {METHOD_STANDARD, METHOD_RCME, METHOD_MLESAC, METHOD_COV_RANSAC}) {
-        std::vector<double> errors;
-        for (int seed = 0; seed < 10; ++seed) {
-            const SyntheticScene s = scene(SCENE_GENERIC, seed);
-            Params params = rcmeParams(seed, method);
-            params.solver = SOLVER_SEVEN_POINT;
-            const Report r = estimateRelativeMotion(s.points1, s.points2, s.cameraMatrix, params);
-            if (r.status == STATUS_SUCCESS)
-                errors.push_back(compareMotion(r.R, r.t, s.R, s.t).rotationDeg);
+    for (MinimalSolverKind solver : {SOLVER_SEVEN_POINT, SOLVER_FIVE_POINT})
+        for (Method method : {METHOD_STANDARD, METHOD_RCME, METHOD_MLESAC, METHOD_COV_RANSAC}) {
+            std::vector<double> errors;
+            for (int seed = 0; seed < 10; ++seed) {
+                const SyntheticScene s = scene(SCENE_GENERIC, seed);
+                Params params = rcmeParams(seed, method);
+                params.solver = solver;
+                const Report r =
+                    estimateRelativeMotion(s.points1, s.points2, s.cameraMatrix, params);
+                if (r.status == STATUS_SUCCESS)
+                    errors.push_back(compareMotion(r.R, r.t, s.R, s.t).rotationDeg);
+            }
+            ASSERT_GE(errors.size(), 8u)
+                << "method " << static_cast<int>(method) << " solver " << static_cast<int>(solver);
+            std::sort(errors.begin(), errors.end());
+            EXPECT_LT(errors[errors.size() / 2], 0.5)
+                << "method " << static_cast<int>(method) << " solver " << static_cast<int>(solver);
         }
-        ASSERT_GE(errors.size(), 8u) << "method " << static_cast<int>(method);
-        std::sort(errors.begin(), errors.end());
-        EXPECT_LT(errors[errors.size() / 2], 0.5) << "method " << static_cast<int>(method);
-    }
 }
 
 #ifdef RCME_STANDALONE_TESTS

@@ -45,9 +45,19 @@ EstimatorComponents createEstimator(const Params& params, const TwoViewData& dat
     // The methods that propagate uncertainty need a motion per hypothesis when K is known (its
     // covariance lives in the motion's tangent space); Standard scores rank-2 F and makes the
     // motion from the selected model.
-    c.solver = params.solver == SOLVER_SEVEN_POINT
-                   ? createSevenPointSolver(/*essentialHypotheses=*/uncertain)
-                   : createEightPointSolver(/*essentialHypotheses=*/uncertain);
+    switch (params.solver) {
+    case SOLVER_FIVE_POINT:
+        if (!data.calibrated)
+            CV_Error(Error::StsBadArg,
+                     "Params.solver: SOLVER_FIVE_POINT needs a camera matrix (it estimates E)");
+        c.solver = createFivePointSolver();
+        break;
+    case SOLVER_SEVEN_POINT:
+        c.solver = createSevenPointSolver(/*essentialHypotheses=*/uncertain);
+        break;
+    default:
+        c.solver = createEightPointSolver(/*essentialHypotheses=*/uncertain);
+    }
     if (uncertain)
         c.solver =
             createUncertainModelInstantiation(std::move(c.solver), params.sampleFitIterations);

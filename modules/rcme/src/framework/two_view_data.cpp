@@ -123,10 +123,8 @@ void validateParams(const Params& p)
     if (p.sampler != SAMPLER_UNIFORM && p.sampler != SAMPLER_PROSAC)
         CV_Error(Error::StsBadArg,
                  cv::format("Params.sampler: unknown value %d", static_cast<int>(p.sampler)));
-    if (p.solver == SOLVER_FIVE_POINT)
-        CV_Error(Error::StsNotImplemented,
-                 "Params.solver: SOLVER_FIVE_POINT is not implemented yet");
-    else if (p.solver != SOLVER_EIGHT_POINT && p.solver != SOLVER_SEVEN_POINT)
+    if (p.solver != SOLVER_EIGHT_POINT && p.solver != SOLVER_SEVEN_POINT &&
+        p.solver != SOLVER_FIVE_POINT)
         CV_Error(Error::StsBadArg,
                  cv::format("Params.solver: unknown value %d", static_cast<int>(p.solver)));
     checkRange(std::isfinite(p.sigma) && p.sigma > 0, "Params.sigma must be positive and finite");
