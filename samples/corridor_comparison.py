@@ -3,7 +3,8 @@
 (Table I setting): the same correspondences, the same exactly-N iterations.
 
 F estimates become motions the same way (E = K^T F K, cv2.recoverPose); rcme is also run
-calibrated (rcme.recoverPose: Standard, RCME, pRCME). Errors: the paper's dq and dt, and the
+calibrated (rcme.estimateRelativeMotion with K, as rcme.recoverPose: Standard, RCME, pRCME, MLESAC,
+Cov-RANSAC with SPRT). Errors: the paper's dq and dt, and the
 rotation / translation-direction angles in degrees. A failure is a non-success status (rcme: PQI
 or degenerate) or an empty F (OpenCV); the means are over the successes.
 
@@ -27,12 +28,13 @@ def motion_from_f(F, K, p1, p2):
     return R, t
 
 
-def summarize(name, errors, failures, seconds, seeds):
+def summarize(name, errors, failures, seconds, points, seeds):
     e = np.array(errors) if errors else np.full((1, 4), np.nan)
-    print("| %-28s | %6.3f (%5.3f) | %6.3f (%5.3f) | %7.2f | %7.2f | %5.1f %% | %6.2f |" % (
+    points = "%6.1f" % np.mean(points) if points else "   n/a"
+    print("| %-28s | %6.3f (%5.3f) | %6.3f (%5.3f) | %7.2f | %7.2f | %5.1f %% | %6.2f | %s |" % (
         name, e[:, 0].mean(), e[:, 0].std(), e[:, 1].mean(), e[:, 1].std(),
         np.median(e[:, 2]), np.median(e[:, 3]), 100.0 * failures / seeds,
-        1000 * np.median(seconds)))
+        1000 * np.median(seconds), points))
 
 
 def main():
@@ -47,15 +49,19 @@ def main():
     threshold = 1.959963984540054 * args.sigma
     calibrated = {"rcme Standard, recoverPose": rcme.METHOD_STANDARD,
                   "rcme RCME, recoverPose": rcme.METHOD_RCME,
-                  "rcme pRCME, recoverPose": rcme.METHOD_PRCME}
-    runs = {name: ([], 0, []) for name in
+                  "rcme pRCME, recoverPose": rcme.METHOD_PRCME,
+                  "rcme MLESAC, recoverPose": rcme.METHOD_MLESAC,
+                  "rcme Cov-RANSAC, recoverPose": rcme.METHOD_COV_RANSAC}
+    runs = {name: ([], 0, [], []) for name in
             ["rcme Standard, F"] + list(calibrated) + ["OpenCV FM_RANSAC, F"]}
 
-    def record(name, R, t, scene, seconds):
-        errors, failures, times = runs[name]
+    def record(name, R, t, scene, seconds, points_per_hypothesis=None):
+        errors, failures, times, points = runs[name]
         times.append(seconds)
+        if points_per_hypothesis is not None:
+            points.append(points_per_hypothesis)
         if R is None:
-            runs[name] = (errors, failures + 1, times)
+            runs[name] = (errors, failures + 1, times, points)
             return
         m = rcme.compareMotion(R, t, scene.R, scene.t)
         errors.append((m.dq, m.dt, m.rotationDeg, m.translationDeg))
@@ -81,12 +87,15 @@ def main():
         record("rcme Standard, F", *(motion_from_f(F, K, p1, p2) if ok else (None, None)), s,
                seconds)
 
+        # estimateRelativeMotion is what rcme.recoverPose runs; its report adds the points
+        # evaluated per hypothesis (fewer than n with Cov-RANSAC's SPRT).
         for name, method in calibrated.items():
             params.method = method
             start = time.perf_counter()
-            _, _, R, t, _, status, _ = rcme.recoverPose(p1, p2, K, params)
+            rep = rcme.estimateRelativeMotion(p1, p2, K, params)
             seconds = time.perf_counter() - start
-            record(name, R if status == rcme.STATUS_SUCCESS else None, t, s, seconds)
+            record(name, rep.R if rep.status == rcme.STATUS_SUCCESS else None, rep.t, s, seconds,
+                   rep.pointsPerHypothesis)
 
         # confidence ~1 keeps OpenCV's adaptive bound at maxIters: exactly N iterations too.
         cv2.setRNGSeed(seed)
@@ -102,10 +111,10 @@ def main():
           "threshold %.2f px" % (args.seeds, args.points, args.inlier_ratio, args.sigma,
                                  args.iterations, threshold))
     print("| method | mean dq (std) | mean dt (std) | median rot. deg | median transl. deg "
-          "| failures | median ms |")
-    print("|---|---|---|---|---|---|---|")
-    for name, (errors, failures, times) in runs.items():
-        summarize(name, errors, failures, times, args.seeds)
+          "| failures | median ms | points / hypothesis |")
+    print("|---|---|---|---|---|---|---|---|")
+    for name, (errors, failures, times, points) in runs.items():
+        summarize(name, errors, failures, times, points, args.seeds)
 
 
 if __name__ == "__main__":

@@ -77,6 +77,7 @@ Estimation estimate(InputArray points1, InputArray points2, InputArray cameraMat
         }
     }
     report.iterations = result.iterations;
+    report.pointsPerHypothesis = result.pointsPerHypothesis;
     report.meanEntropy = result.score.meanEntropy;
     if (report.status != STATUS_SUCCESS)
         out.inFront.assign(out.mask.size(), 0);

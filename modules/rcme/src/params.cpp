@@ -43,6 +43,7 @@ Params Params::fromUsacParams(const UsacParams& usacParams)
 
 Report::Report()
     : status(STATUS_POOR_QUALITY_INPUT), inlierCount(0), iterations(0),
+      pointsPerHypothesis(std::numeric_limits<double>::quiet_NaN()),
       meanEntropy(std::numeric_limits<double>::quiet_NaN()), timeSeconds(0)
 {
 }

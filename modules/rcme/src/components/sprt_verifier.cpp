@@ -75,16 +75,11 @@ public:
         return true;
     }
 
-    //! Mean number of points checked per hypothesis so far (the benchmark reports it).
-    double meanPointsChecked() const
-    {
-        return hypotheses_ > 0 ? static_cast<double>(pointsChecked_) / hypotheses_ : 0.0;
-    }
+    long long pointsChecked() const override { return pointsChecked_; }
 
 private:
     void record(int checked, bool rejected, double consistentRatio)
     {
-        ++hypotheses_;
         pointsChecked_ += checked;
         if (rejected) {
             // delta: the mean consistent ratio of rejected (bad) hypotheses.
@@ -121,18 +116,11 @@ private:
     double delta_ = 0.01;
     double threshold_ = 1.0;
     long long pointsChecked_ = 0;
-    long long hypotheses_ = 0;
     long long rejected_ = 0;
     double rejectedConsistentSum_ = 0;
 };
 
 } // namespace
-
-double sprtMeanPointsChecked(const ModelVerifier& verifier)
-{
-    const auto* sprt = dynamic_cast<const SprtVerifier*>(&verifier);
-    return sprt ? sprt->meanPointsChecked() : 0.0;
-}
 
 std::unique_ptr<ModelVerifier> createSprtVerifier(const TwoViewData& data, const Params& params,
                                                   uint64_t seed)

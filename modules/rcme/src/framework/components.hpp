@@ -86,6 +86,9 @@ public:
     //! May complete the model (e.g. its covariance). False drops it.
     virtual bool isModelGood(const TwoViewData& data, const std::vector<int>& sample,
                              Model& model) = 0;
+    //! Correspondences (outside the sample) whose residual this verifier evaluated so far: the
+    //! cost SPRT saves is reported from it.
+    virtual long long pointsChecked() const { return 0; }
 };
 
 //! Scores hypotheses and classifies points.
@@ -176,8 +179,6 @@ std::unique_ptr<Scorer> createMlesacScorer(const TwoViewData& data, const Params
 //! delta; points in a fixed pseudo-random order from `seed`.
 std::unique_ptr<ModelVerifier> createSprtVerifier(const TwoViewData& data, const Params& params,
                                                   uint64_t seed);
-//! Mean number of points an SPRT verifier checked per hypothesis (0 for other verifiers).
-double sprtMeanPointsChecked(const ModelVerifier& verifier);
 //! Cov-RANSAC's scorer: inliers by propagated uncertainty, most inliers wins.
 std::unique_ptr<Scorer> createCovarianceInlierScorer(const TwoViewData& data, const Params& params,
                                                      int sampleSize);

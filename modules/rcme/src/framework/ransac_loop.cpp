@@ -103,6 +103,7 @@ RansacResult runRansac(const TwoViewData& data, EstimatorComponents& c)
     models.reserve(static_cast<size_t>(c.solver->maxSolutions()));
     CandidateSet candidates;
     std::vector<uchar> inliers; // local optimisation's buffer, reused
+    long long scoredHypotheses = 0;
     int iteration = 0;
     for (; iteration < c.termination->iterationBound(); ++iteration) {
         c.sampler->generateSample(iteration, sample);
@@ -111,8 +112,10 @@ RansacResult runRansac(const TwoViewData& data, EstimatorComponents& c)
             continue;
         }
         for (Model& model : models) {
+            ++result.hypotheses;
             if (!passesVerifiers(c, data, sample, model))
                 continue;
+            ++scoredHypotheses;
             const Score score = c.scorer->score(data, model);
             if (!score.isCandidate || !candidates.add(model, score))
                 continue;
@@ -123,6 +126,11 @@ RansacResult runRansac(const TwoViewData& data, EstimatorComponents& c)
         }
     }
     result.iterations = iteration;
+    long long pointsEvaluated = scoredHypotheses * n;
+    for (const auto& verifier : c.verifiers)
+        pointsEvaluated += verifier->pointsChecked();
+    if (result.hypotheses > 0)
+        result.pointsPerHypothesis = static_cast<double>(pointsEvaluated) / result.hypotheses;
 
     const CandidateSet::Candidate* best = candidates.best(*c.scorer);
     if (!best) {

@@ -6,6 +6,7 @@
 
 #include "framework/components.hpp"
 
+#include <limits>
 #include <string>
 
 namespace cv {
@@ -22,6 +23,10 @@ struct RansacResult
     std::vector<uchar> mask; //!< inliers of the returned model, always data.size()
     int iterations = 0;
     int degenerateSamples = 0;
+    long long hypotheses = 0; //!< models the solver returned (several per sample for 7/5-point)
+    //! Mean number of correspondences whose residual was evaluated per hypothesis, by the
+    //! verifiers and by scoring; NaN when there was no hypothesis.
+    double pointsPerHypothesis = std::numeric_limits<double>::quiet_NaN();
 };
 
 /** The RANSAC loop shared by every method: sample, instantiate, verify, score, keep the best

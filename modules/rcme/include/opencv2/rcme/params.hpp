@@ -155,7 +155,12 @@ struct CV_EXPORTS_W_SIMPLE Report
     CV_PROP_RW Mat t;              //!< 3x1 unit translation, only with a camera matrix
     CV_PROP_RW Mat mask;           //!< Nx1 CV_8U inlier mask, 0 or 1, always sized
     CV_PROP_RW int inlierCount;    //!< number of ones in mask
-    CV_PROP_RW int iterations;     //!< hypotheses drawn
+    CV_PROP_RW int iterations;     //!< samples drawn
+    /** Mean number of correspondences whose residual was evaluated per hypothesis, in
+    verification and scoring: the number of points for methods that score every hypothesis on
+    all of them, fewer with Cov-RANSAC's SPRT, which rejects bad hypotheses after a few points.
+    NaN when no hypothesis was instantiated. */
+    CV_PROP_RW double pointsPerHypothesis;
     CV_PROP_RW double meanEntropy; //!< RCME's mean inlier entropy psi (nats), NaN for other methods
     /** 5x5 covariance of the motion in the tangent space (rotation increment omega, rad, then
     the two components of the translation direction increment in an orthonormal basis of t's

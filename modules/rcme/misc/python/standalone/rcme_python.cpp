@@ -562,6 +562,7 @@ PYBIND11_MODULE(rcme, m)
         .mat("mask", &Report::mask, "Nx1 uint8 inlier mask")
         .plain("inlierCount", &Report::inlierCount)
         .plain("iterations", &Report::iterations)
+        .plain("pointsPerHypothesis", &Report::pointsPerHypothesis)
         .plain("meanEntropy", &Report::meanEntropy)
         .mat("covariance", &Report::covariance, "5x5 motion covariance or None")
         .plain("timeSeconds", &Report::timeSeconds);

@@ -503,6 +503,8 @@ class _RcmeSuite:
         self.assertValidMask(rep.mask, n)
         self.assertEqual(rep.inlierCount, int(rep.mask.sum()))
         self.assertGreaterEqual(rep.iterations, 1)
+        # Standard scores every hypothesis on every point
+        self.assertAlmostEqual(rep.pointsPerHypothesis, n)
         self.assertGreaterEqual(rep.timeSeconds, 0.0)
         self.assertTrue(np.isnan(rep.meanEntropy))  # only RCME computes it
         if rep.covariance is not None:
