@@ -147,15 +147,15 @@ struct CV_EXPORTS_W_SIMPLE Report
 {
     //! An empty report: status #STATUS_POOR_QUALITY_INPUT, no model, NaN mean entropy.
     CV_WRAP Report();
-    CV_PROP_RW Status status;      //!< outcome; the models below are set only on success
-    CV_PROP_RW String message;     //!< why the status is not #STATUS_SUCCESS, empty otherwise
-    CV_PROP_RW Mat F;              //!< 3x3 fundamental matrix (pixels), ||F|| = 1
-    CV_PROP_RW Mat E;              //!< 3x3 essential matrix, only with a camera matrix
-    CV_PROP_RW Mat R;              //!< 3x3 rotation, only with a camera matrix
-    CV_PROP_RW Mat t;              //!< 3x1 unit translation, only with a camera matrix
-    CV_PROP_RW Mat mask;           //!< Nx1 CV_8U inlier mask, 0 or 1, always sized
-    CV_PROP_RW int inlierCount;    //!< number of ones in mask
-    CV_PROP_RW int iterations;     //!< samples drawn
+    CV_PROP_RW Status status;   //!< outcome; the models below are set only on success
+    CV_PROP_RW String message;  //!< why the status is not #STATUS_SUCCESS, empty otherwise
+    CV_PROP_RW Mat F;           //!< 3x3 fundamental matrix (pixels), ||F|| = 1
+    CV_PROP_RW Mat E;           //!< 3x3 essential matrix, only with a camera matrix
+    CV_PROP_RW Mat R;           //!< 3x3 rotation, only with a camera matrix
+    CV_PROP_RW Mat t;           //!< 3x1 unit translation, only with a camera matrix
+    CV_PROP_RW Mat mask;        //!< Nx1 CV_8U inlier mask, 0 or 1, always sized
+    CV_PROP_RW int inlierCount; //!< number of ones in mask
+    CV_PROP_RW int iterations;  //!< samples drawn
     /** Mean number of correspondences whose residual was evaluated per hypothesis, in
     verification and scoring: the number of points for methods that score every hypothesis on
     all of them, fewer with Cov-RANSAC's SPRT, which rejects bad hypotheses after a few points.
