@@ -194,6 +194,18 @@ std::unique_ptr<Scorer> createEntropyScorer(const TwoViewData& data, const Param
 std::unique_ptr<Termination> createEntropyTermination(std::unique_ptr<Termination> bound,
                                                       double entropyBound);
 
+//! The final inliers compared with a homography (components/homography_degeneracy_test.cpp).
+struct HomographyComparison
+{
+    double fundamentalGric = 0.0;
+    double homographyGric = 0.0;
+    //! A homography explains the inliers at least as well as F: planar scene or pure rotation.
+    bool homographyExplainsInliers = false;
+};
+/** Torr's GRIC of F and of a homography fitted (RANSAC) to F's support (the points within
+data.threshold of it); with fewer than 8 such points or no homography, nothing is flagged. */
+HomographyComparison compareWithHomography(const TwoViewData& data, const Eigen::Matrix3d& F);
+
 /** Gold Standard fit of `model` (motion if it has one, else F) on the points `indices`, with the
 first-order covariance of the result (Model::uncertaintyDof and friends; left at 0 when the
 information matrix is ill-conditioned). False when there are too few points to fit. */

@@ -537,13 +537,15 @@ PYBIND11_MODULE(rcme, m)
         .plain("priorInlierRatio", &Params::priorInlierRatio, "RCME's omega_p; <= 0: estimated")
         .plain("consistencyDof", &Params::consistencyDof, "dof of RCME's chi-square tests")
         .plain("sampleFitIterations", &Params::sampleFitIterations,
-               "RCME: Gauss-Newton iterations on each hypothesis' own sample; default 0")
+               "RCME: Gauss-Newton iterations on each hypothesis' own sample; default 5")
         .plain("sampleLeverage", &Params::sampleLeverage,
                "RCME: leverage-corrected sample variance in the consistency test; default False")
         .plain("earlyTerminationEntropy", &Params::earlyTerminationEntropy,
                "RCME: stop once a candidate's mean excess entropy is at most this; <= 0 off")
         .plain("localOptimization", &Params::localOptimization,
                "refit new candidates on their inliers (LO-RANSAC); default False")
+        .plain("degeneracyTest", &Params::degeneracyTest,
+               "final inliers fit a homography as well as F -> degenerate status; default True")
         .mat("matchQuality", &Params::matchQuality,
              "SAMPLER_PROSAC: one score per correspondence, higher is better; None: sorted");
     paramsFields.addKeywordInit("Params");

@@ -182,6 +182,7 @@ class _RcmeSuite:
         self.assertAlmostEqual(p.alpha, 0.05)
         self.assertLessEqual(p.priorInlierRatio, 0.0)
         self.assertEqual(p.consistencyDof, 1)
+        self.assertIs(p.degeneracyTest, True)
         self.assertTrue(0.5 <= p.inlierRatioFactor <= 1.0)
         self.assertTrue(np.isfinite(p.entropyThreshold))
 
@@ -193,6 +194,7 @@ class _RcmeSuite:
             "maxIterations": 321, "exactIterations": True, "randomGeneratorState": 42,
             "refine": False, "refineIterations": 7, "alpha": 0.01, "entropyThreshold": 2.0,
             "inlierRatioFactor": 0.6, "priorInlierRatio": 0.3, "consistencyDof": 3,
+            "degeneracyTest": False,
         }
         p = b.Params()
         for name, value in values.items():
@@ -520,6 +522,48 @@ class _RcmeSuite:
         # params is optional
         rep3 = b.estimateRelativeMotion(s.points1, s.points2, s.cameraMatrix)
         self.assertValidMask(rep3.mask, n)
+
+    def test_degenerate_scenes(self):
+        b = self.b
+        rng = np.random.default_rng(7)
+        K = np.array([[500.0, 0, 320], [0, 500.0, 240], [0, 0, 1]])
+        a = np.deg2rad(4.0)
+        R = np.array([[np.cos(a), 0, np.sin(a)], [0, 1, 0], [-np.sin(a), 0, np.cos(a)]])
+
+        def project(X, R, t):
+            x = (K @ (R @ X.T + t.reshape(3, 1))).T
+            return x[:, :2] / x[:, 2:]
+
+        n = 300
+        on_plane = np.column_stack([rng.uniform(-3, 3, n), rng.uniform(-2, 2, n), np.full(n, 8.0)])
+        in_depth = np.column_stack([rng.uniform(-3, 3, n), rng.uniform(-2, 2, n),
+                                    rng.uniform(4, 12, n)])
+        scenes = {
+            "plane": (on_plane, np.array([0.5, 0.1, 0.0])),
+            "pure rotation": (in_depth, np.zeros(3)),
+        }
+        for name, (X, t) in scenes.items():
+            p1 = project(X, np.eye(3), np.zeros(3)) + rng.normal(0, 0.5, (n, 2))
+            p2 = project(X, R, t) + rng.normal(0, 0.5, (n, 2))
+            for method in (b.METHOD_STANDARD, b.METHOD_RCME):
+                params = self.make_params(method=method)
+                rep = b.estimateRelativeMotion(p1, p2, K, params)
+                self.assertEqual(rep.status, b.STATUS_DEGENERATE_CONFIGURATION, name)
+                self.assertIn("homography", rep.message, name)
+                self.assertValidMask(rep.mask, n)
+                self.assertEqual(int(rep.mask.sum()), 0, name)
+                self.assertIsNone(rep.R, name)
+                F, mask, status = b.findFundamentalMat(p1, p2, params)
+                self.assertEqual(status, b.STATUS_DEGENERATE_CONFIGURATION, name)
+                self.assertIsNone(F, name)
+            # switched off, the same input gives a (non-unique) model
+            rep = b.estimateRelativeMotion(p1, p2, K, self.make_params(degeneracyTest=False))
+            self.assertEqual(rep.status, b.STATUS_SUCCESS, name)
+        # a scene with depth and translation is not flagged
+        p1 = project(in_depth, np.eye(3), np.zeros(3)) + rng.normal(0, 0.5, (n, 2))
+        p2 = project(in_depth, R, np.array([0.5, 0.1, 0.0])) + rng.normal(0, 0.5, (n, 2))
+        rep = b.estimateRelativeMotion(p1, p2, K, self.make_params())
+        self.assertEqual(rep.status, b.STATUS_SUCCESS)
 
     def test_compare_motion(self):
         b = self.b

@@ -1,0 +1,97 @@
+// This file is part of the rcme module. It is subject to the license terms in the LICENSE file
+// found in the top-level directory of this distribution.
+
+// The final inliers against a homography, by Torr's geometric robust information criterion
+// (GRIC; Torr, "Geometric motion segmentation and model selection", Phil. Trans. R. Soc. A,
+// 1998): a planar scene or a rotation about the camera centre fits a homography, and then F is
+// not determined by the data (a family of F explains the points equally well) and neither is the
+// motion (pure rotation: no translation; a plane: two motions). Any rank-2 F of that family
+// passes every inlier test, so only a comparison with the simpler model can tell.
+//     GRIC = sum_i min(e_i^2 / sigma^2, 2 (r - d)) + n d log(r) + k log(r n)
+// with r = 4 (two image points), e_i the Sampson error of each model, d the dimension of its
+// manifold (F: 3, H: 2) and k its parameters (F: 7, H: 8). The homography wins when its GRIC is
+// not larger.
+
+#include "framework/components.hpp"
+#include "geometry/epipolar.hpp"
+#include "geometry/statistics.hpp"
+
+#include <opencv2/calib3d.hpp>
+
+namespace cv {
+namespace rcme {
+namespace detail {
+
+namespace {
+
+constexpr double kDataDimension = 4.0;
+
+double gric(double sumOfCappedErrors, int n, double manifoldDimension, double parameters)
+{
+    return sumOfCappedErrors + n * manifoldDimension * std::log(kDataDimension) +
+           parameters * std::log(kDataDimension * n);
+}
+
+// First-order geometric error of x2 ~ H x1 (two equations of x2 x H x1 = 0), squared, pixels^2.
+double homographySampsonSquared(const Eigen::Matrix3d& H, const Eigen::Vector2d& x1,
+                                const Eigen::Vector2d& x2)
+{
+    const Eigen::Vector3d Hx = H * homogeneous(x1);
+    const Eigen::Vector2d residual(x2.y() * Hx.z() - Hx.y(), Hx.x() - x2.x() * Hx.z());
+    Eigen::Matrix<double, 2, 4> J; // d residual / d(x1, y1, x2, y2)
+    J << x2.y() * H(2, 0) - H(1, 0), x2.y() * H(2, 1) - H(1, 1), 0.0, Hx.z(),
+        H(0, 0) - x2.x() * H(2, 0), H(0, 1) - x2.x() * H(2, 1), -Hx.z(), 0.0;
+    const Eigen::Matrix2d JJt = J * J.transpose();
+    if (!(std::abs(JJt.determinant()) > 0.0))
+        return std::numeric_limits<double>::infinity();
+    return residual.dot(JJt.inverse() * residual);
+}
+
+} // namespace
+
+HomographyComparison compareWithHomography(const TwoViewData& data, const Eigen::Matrix3d& F)
+{
+    HomographyComparison result;
+    // F's support at the plain threshold, not the method's mask: Cov-RANSAC's and RCME's bands
+    // widen with the model's uncertainty, which is large exactly when F is not determined.
+    const double thresholdSquared = data.threshold * data.threshold;
+    std::vector<Point2d> inliers1, inliers2;
+    for (size_t i = 0; i < data.points1.size(); ++i)
+        if (sampsonDistanceSquared(F, data.points1[i], data.points2[i]) <= thresholdSquared) {
+            inliers1.emplace_back(data.points1[i].x(), data.points1[i].y());
+            inliers2.emplace_back(data.points2[i].x(), data.points2[i].y());
+        }
+    const int n = static_cast<int>(inliers1.size());
+    if (n < 8)
+        return result;
+
+    // The transfer error of a true correspondence has both images' noise: chi-square, 2 DoF.
+    const double transferThreshold = data.sigma * std::sqrt(2.0 * chiSquareQuantile(0.95, 2));
+    // OpenCV's RANSAC here draws from a fixed seed, so the result is reproducible.
+    const Mat Hmat =
+        findHomography(inliers1, inliers2, RANSAC, transferThreshold, noArray(), 2000, 0.999);
+    if (Hmat.empty())
+        return result;
+    Eigen::Matrix3d H;
+    for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c)
+            H(r, c) = Hmat.at<double>(r, c);
+
+    const double variance = data.sigma * data.sigma;
+    double fitF = 0.0, fitH = 0.0;
+    for (int i = 0; i < n; ++i) {
+        const Eigen::Vector2d x1(inliers1[size_t(i)].x, inliers1[size_t(i)].y);
+        const Eigen::Vector2d x2(inliers2[size_t(i)].x, inliers2[size_t(i)].y);
+        fitF += std::min(sampsonDistanceSquared(F, x1, x2) / variance, 2.0 * (kDataDimension - 3));
+        fitH +=
+            std::min(homographySampsonSquared(H, x1, x2) / variance, 2.0 * (kDataDimension - 2));
+    }
+    result.fundamentalGric = gric(fitF, n, 3, 7);
+    result.homographyGric = gric(fitH, n, 2, 8);
+    result.homographyExplainsInliers = result.homographyGric <= result.fundamentalGric;
+    return result;
+}
+
+} // namespace detail
+} // namespace rcme
+} // namespace cv
