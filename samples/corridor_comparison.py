@@ -5,8 +5,9 @@
 F estimates become motions the same way (E = K^T F K, cv2.recoverPose); rcme is also run
 calibrated (rcme.estimateRelativeMotion with K, as rcme.recoverPose: Standard, RCME, pRCME, MLESAC,
 Cov-RANSAC with SPRT). Errors: the paper's dq and dt, and the
-rotation / translation-direction angles in degrees. A failure is a non-success status (rcme: PQI
-or degenerate) or an empty F (OpenCV); the means are over the successes.
+rotation / translation-direction angles in degrees. Failures are counted by status: poor quality
+input, degenerate (every sample degenerate, or a homography explains the inliers as well as F),
+other (an empty F from OpenCV); the means are over the successes.
 
     PYTHONPATH=build/python /usr/bin/python3 samples/corridor_comparison.py --seeds 200
 """
@@ -31,10 +32,14 @@ def motion_from_f(F, K, p1, p2):
 def summarize(name, errors, failures, seconds, points, seeds):
     e = np.array(errors) if errors else np.full((1, 4), np.nan)
     points = "%6.1f" % np.mean(points) if points else "   n/a"
-    print("| %-28s | %6.3f (%5.3f) | %6.3f (%5.3f) | %7.2f | %7.2f | %5.1f %% | %6.2f | %s |" % (
-        name, e[:, 0].mean(), e[:, 0].std(), e[:, 1].mean(), e[:, 1].std(),
-        np.median(e[:, 2]), np.median(e[:, 3]), 100.0 * failures / seeds,
-        1000 * np.median(seconds), points))
+    pqi = 100.0 * failures.get(rcme.STATUS_POOR_QUALITY_INPUT, 0) / seeds
+    degenerate = 100.0 * failures.get(rcme.STATUS_DEGENERATE_CONFIGURATION, 0) / seeds
+    other = 100.0 * sum(failures.values()) / seeds - pqi - degenerate
+    print("| %-28s | %6.3f (%5.3f) | %6.3f (%5.3f) | %7.2f | %7.2f | %5.1f %% | %5.1f %% "
+          "| %5.1f %% | %6.2f | %s |" % (
+              name, e[:, 0].mean(), e[:, 0].std(), e[:, 1].mean(), e[:, 1].std(),
+              np.median(e[:, 2]), np.median(e[:, 3]), pqi, degenerate, other,
+              1000 * np.median(seconds), points))
 
 
 def main():
@@ -52,16 +57,16 @@ def main():
                   "rcme pRCME, recoverPose": rcme.METHOD_PRCME,
                   "rcme MLESAC, recoverPose": rcme.METHOD_MLESAC,
                   "rcme Cov-RANSAC, recoverPose": rcme.METHOD_COV_RANSAC}
-    runs = {name: ([], 0, [], []) for name in
+    runs = {name: ([], {}, [], []) for name in
             ["rcme Standard, F"] + list(calibrated) + ["OpenCV FM_RANSAC, F"]}
 
-    def record(name, R, t, scene, seconds, points_per_hypothesis=None):
+    def record(name, R, t, scene, seconds, status, points_per_hypothesis=None):
         errors, failures, times, points = runs[name]
         times.append(seconds)
         if points_per_hypothesis is not None:
             points.append(points_per_hypothesis)
         if R is None:
-            runs[name] = (errors, failures + 1, times, points)
+            failures[status] = failures.get(status, 0) + 1
             return
         m = rcme.compareMotion(R, t, scene.R, scene.t)
         errors.append((m.dq, m.dt, m.rotationDeg, m.translationDeg))
@@ -85,7 +90,7 @@ def main():
         seconds = time.perf_counter() - start
         ok = status == rcme.STATUS_SUCCESS
         record("rcme Standard, F", *(motion_from_f(F, K, p1, p2) if ok else (None, None)), s,
-               seconds)
+               seconds, status)
 
         # estimateRelativeMotion is what rcme.recoverPose runs; its report adds the points
         # evaluated per hypothesis (fewer than n with Cov-RANSAC's SPRT).
@@ -95,7 +100,7 @@ def main():
             rep = rcme.estimateRelativeMotion(p1, p2, K, params)
             seconds = time.perf_counter() - start
             record(name, rep.R if rep.status == rcme.STATUS_SUCCESS else None, rep.t, s, seconds,
-                   rep.pointsPerHypothesis)
+                   rep.status, rep.pointsPerHypothesis)
 
         # confidence ~1 keeps OpenCV's adaptive bound at maxIters: exactly N iterations too.
         cv2.setRNGSeed(seed)
@@ -105,14 +110,14 @@ def main():
         seconds = time.perf_counter() - start
         ok = F is not None and F.shape == (3, 3)
         record("OpenCV FM_RANSAC, F", *(motion_from_f(F, K, p1, p2) if ok else (None, None)), s,
-               seconds)
+               seconds, None)
 
     print("corridor: %d seeds, n = %d, inlier ratio %.2f, sigma %.2f px, exactly N = %d, "
           "threshold %.2f px" % (args.seeds, args.points, args.inlier_ratio, args.sigma,
                                  args.iterations, threshold))
     print("| method | mean dq (std) | mean dt (std) | median rot. deg | median transl. deg "
-          "| failures | median ms | points / hypothesis |")
-    print("|---|---|---|---|---|---|---|---|")
+          "| PQI | degenerate | other failure | median ms | points / hypothesis |")
+    print("|---|---|---|---|---|---|---|---|---|---|")
     for name, (errors, failures, times, points) in runs.items():
         summarize(name, errors, failures, times, points, args.seeds)
 
