@@ -50,7 +50,8 @@ Estimation estimate(InputArray points1, InputArray points2, InputArray cameraMat
     detail::EstimatorComponents components = detail::createEstimator(params, data);
     detail::RansacResult result = detail::runRansac(data, components);
     if (result.status == STATUS_SUCCESS && params.degeneracyTest &&
-        detail::compareWithHomography(data, result.model.F).homographyExplainsInliers) {
+        detail::compareWithHomography(data, result.model.F, result.mask)
+            .homographyExplainsInliers) {
         result.status = STATUS_DEGENERATE_CONFIGURATION;
         result.message = "a homography explains the inliers as well as F (planar scene, pure "
                          "rotation or too little parallax): the motion is not determined";

@@ -18,6 +18,8 @@
 
 #include <opencv2/calib3d.hpp>
 
+#include <algorithm>
+
 namespace cv {
 namespace rcme {
 namespace detail {
@@ -47,29 +49,54 @@ double homographySampsonSquared(const Eigen::Matrix3d& H, const Eigen::Vector2d&
     return residual.dot(JJt.inverse() * residual);
 }
 
+/* The noise of the points that the homography explains, from the median of their squared
+Sampson errors (chi-square, 2 DoF, cut at its 95 % quantile). GRIC needs the data's own noise:
+with a stated sigma larger than it (1 px for sub-pixel SIFT matches) the residual terms shrink and
+the per-point penalty of F's extra dimension decides, flagging shallow real scenes that F fits
+well. Taken from H, not F: on a degenerate scene F's family absorbs part of the noise, and an
+estimate from F's residuals would hide the degeneracy. Never above Params::sigma. */
+double homographyInlierNoise(double statedSigma, std::vector<double> squaredErrors)
+{
+    const double cut = statedSigma * statedSigma * chiSquareQuantile(0.95, 2); // as in the caller
+    squaredErrors.erase(std::remove_if(squaredErrors.begin(), squaredErrors.end(),
+                                       [cut](double e) { return !(e <= cut); }),
+                        squaredErrors.end());
+    if (squaredErrors.size() < 8)
+        return 0.0;
+    const auto middle =
+        squaredErrors.begin() + static_cast<std::ptrdiff_t>(squaredErrors.size() / 2);
+    std::nth_element(squaredErrors.begin(), middle, squaredErrors.end());
+    const double estimate = std::sqrt(*middle / chiSquareQuantile(0.5 * 0.95, 2));
+    return std::min(statedSigma, std::max(estimate, 1e-3 * statedSigma));
+}
+
 } // namespace
 
-HomographyComparison compareWithHomography(const TwoViewData& data, const Eigen::Matrix3d& F)
+HomographyComparison compareWithHomography(const TwoViewData& data, const Eigen::Matrix3d& F,
+                                           const std::vector<uchar>& mask)
 {
     HomographyComparison result;
-    // F's support at the plain threshold, not the method's mask: Cov-RANSAC's and RCME's bands
-    // widen with the model's uncertainty, which is large exactly when F is not determined.
+    // Candidates: the method's inliers and F's support at the plain threshold. Cov-RANSAC's and
+    // RCME's bands widen with the model's uncertainty, which is large exactly when F is not
+    // determined, and then hold points that a homography fits and F does not.
     const double thresholdSquared = data.threshold * data.threshold;
-    std::vector<Point2d> inliers1, inliers2;
+    std::vector<Point2d> candidates1, candidates2;
     for (size_t i = 0; i < data.points1.size(); ++i)
-        if (sampsonDistanceSquared(F, data.points1[i], data.points2[i]) <= thresholdSquared) {
-            inliers1.emplace_back(data.points1[i].x(), data.points1[i].y());
-            inliers2.emplace_back(data.points2[i].x(), data.points2[i].y());
+        if (mask[i] ||
+            sampsonDistanceSquared(F, data.points1[i], data.points2[i]) <= thresholdSquared) {
+            candidates1.emplace_back(data.points1[i].x(), data.points1[i].y());
+            candidates2.emplace_back(data.points2[i].x(), data.points2[i].y());
         }
-    const int n = static_cast<int>(inliers1.size());
-    if (n < 8)
+    if (candidates1.size() < 8)
         return result;
 
     // The transfer error of a true correspondence has both images' noise: chi-square, 2 DoF.
+    // 200 iterations: H can only win when it explains most of the candidates (F's per-point
+    // penalty is log 4), and then 200 four-point samples find it with certainty.
     const double transferThreshold = data.sigma * std::sqrt(2.0 * chiSquareQuantile(0.95, 2));
     // OpenCV's RANSAC here draws from a fixed seed, so the result is reproducible.
     const Mat Hmat =
-        findHomography(inliers1, inliers2, RANSAC, transferThreshold, noArray(), 2000, 0.999);
+        findHomography(candidates1, candidates2, RANSAC, transferThreshold, noArray(), 200, 0.999);
     if (Hmat.empty())
         return result;
     Eigen::Matrix3d H;
@@ -77,15 +104,30 @@ HomographyComparison compareWithHomography(const TwoViewData& data, const Eigen:
         for (int c = 0; c < 3; ++c)
             H(r, c) = Hmat.at<double>(r, c);
 
-    const double variance = data.sigma * data.sigma;
-    double fitF = 0.0, fitH = 0.0;
-    for (int i = 0; i < n; ++i) {
-        const Eigen::Vector2d x1(inliers1[size_t(i)].x, inliers1[size_t(i)].y);
-        const Eigen::Vector2d x2(inliers2[size_t(i)].x, inliers2[size_t(i)].y);
-        fitF += std::min(sampsonDistanceSquared(F, x1, x2) / variance, 2.0 * (kDataDimension - 3));
-        fitH +=
-            std::min(homographySampsonSquared(H, x1, x2) / variance, 2.0 * (kDataDimension - 2));
+    // GRIC over the points that either model explains: a point neither explains would be capped
+    // in both, at costs that differ by the models' dimensions, and favour F for no reason.
+    const double homographyCut = data.sigma * data.sigma * chiSquareQuantile(0.95, 2);
+    std::vector<double> homographyErrors, fundamentalErrors;
+    for (size_t i = 0; i < candidates1.size(); ++i) {
+        const Eigen::Vector2d x1(candidates1[i].x, candidates1[i].y);
+        const Eigen::Vector2d x2(candidates2[i].x, candidates2[i].y);
+        const double errorH = homographySampsonSquared(H, x1, x2);
+        const double errorF = sampsonDistanceSquared(F, x1, x2);
+        if (errorH <= homographyCut || errorF <= thresholdSquared) {
+            homographyErrors.push_back(errorH);
+            fundamentalErrors.push_back(errorF);
+        }
     }
+    const double sigma = homographyInlierNoise(data.sigma, homographyErrors);
+    if (sigma <= 0.0) // the homography explains too few points to matter
+        return result;
+    const double variance = sigma * sigma;
+    double fitF = 0.0, fitH = 0.0;
+    for (size_t i = 0; i < homographyErrors.size(); ++i) {
+        fitF += std::min(fundamentalErrors[i] / variance, 2.0 * (kDataDimension - 3));
+        fitH += std::min(homographyErrors[i] / variance, 2.0 * (kDataDimension - 2));
+    }
+    const int n = static_cast<int>(homographyErrors.size());
     result.fundamentalGric = gric(fitF, n, 3, 7);
     result.homographyGric = gric(fitH, n, 2, 8);
     result.homographyExplainsInliers = result.homographyGric <= result.fundamentalGric;

@@ -202,9 +202,12 @@ struct HomographyComparison
     //! A homography explains the inliers at least as well as F: planar scene or pure rotation.
     bool homographyExplainsInliers = false;
 };
-/** Torr's GRIC of F and of a homography fitted (RANSAC) to F's support (the points within
-data.threshold of it); with fewer than 8 such points or no homography, nothing is flagged. */
-HomographyComparison compareWithHomography(const TwoViewData& data, const Eigen::Matrix3d& F);
+/** Torr's GRIC of F and of a homography fitted (RANSAC) to the method's inliers `mask` and F's
+support (the points within data.threshold of it), over the points either model explains, with
+the noise of the homography's inliers (at most data.sigma); with fewer than 8 points or no
+homography, nothing is flagged. */
+HomographyComparison compareWithHomography(const TwoViewData& data, const Eigen::Matrix3d& F,
+                                           const std::vector<uchar>& mask);
 
 /** Gold Standard fit of `model` (motion if it has one, else F) on the points `indices`, with the
 first-order covariance of the result (Model::uncertaintyDof and friends; left at 0 when the
