@@ -134,8 +134,8 @@ struct CV_EXPORTS_W_SIMPLE Params
     a candidate too. Off by default, as in the paper. */
     CV_PROP_RW bool localOptimization;
     /** After the loop, compare the final inliers' fit by F with their fit by a homography
-    (Torr's GRIC): when the homography explains them at least as well (a planar scene, a
-    rotation without translation, too little parallax), F and the motion are not determined
+    (Torr's GRIC @cite Torr1998GRIC): when the homography explains them at least as well (a planar
+    scene, a rotation without translation, too little parallax), F and the motion are not determined
     and the status is #STATUS_DEGENERATE_CONFIGURATION. Default true. */
     CV_PROP_RW bool degeneracyTest;
     /** For #SAMPLER_PROSAC: one score per correspondence, higher is better (e.g. the negated
