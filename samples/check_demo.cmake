@@ -2,6 +2,10 @@
 #   -DMODE=png -DFILE=<png>: FILE exists and starts with the PNG signature.
 #   -DMODE=missing -DDEMO=<demo> -DFILE=<path>: the demo given the missing image FILE exits with 2
 #   and names FILE in its message.
+#   -DMODE=missing_data -DDEMO=<mono_vo> -DFILE=<folder>: mono_vo given the missing data folder
+#   FILE exits with 2 and names FILE in its message.
+#   -DMODE=run -DDEMO=<sample> -DARGS=<a;b;...> -DEXPECT=<regex>: the sample run with ARGS exits
+#   with 0 and its output matches every regex of the list EXPECT.
 if(MODE STREQUAL "png")
   if(NOT EXISTS "${FILE}")
     message(FATAL_ERROR "the demo did not write ${FILE}")
@@ -11,18 +15,35 @@ if(MODE STREQUAL "png")
     message(FATAL_ERROR "${FILE} is not a PNG file (signature ${signature})")
   endif()
   message(STATUS "${FILE} is a PNG file")
-elseif(MODE STREQUAL "missing")
+elseif(MODE STREQUAL "missing" OR MODE STREQUAL "missing_data")
   file(REMOVE "${FILE}")
-  execute_process(COMMAND "${DEMO}" "${FILE}" "${FILE}"
-    RESULT_VARIABLE result OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(MODE STREQUAL "missing")
+    execute_process(COMMAND "${DEMO}" "${FILE}" "${FILE}"
+      RESULT_VARIABLE result OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  else()
+    execute_process(COMMAND "${DEMO}" --data "${FILE}" --out "${FILE}.png"
+      RESULT_VARIABLE result OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  endif()
   if(NOT result EQUAL 2)
-    message(FATAL_ERROR "expected exit code 2 for a missing image, got '${result}'\n${out}${err}")
+    message(FATAL_ERROR "expected exit code 2 for a missing input, got '${result}'\n${out}${err}")
   endif()
   string(FIND "${out}${err}" "${FILE}" pos)
   if(pos EQUAL -1)
     message(FATAL_ERROR "the message does not name the missing file ${FILE}:\n${out}${err}")
   endif()
-  message(STATUS "missing image reported: ${err}")
+  message(STATUS "missing input reported: ${err}")
+elseif(MODE STREQUAL "run")
+  execute_process(COMMAND "${DEMO}" ${ARGS}
+    RESULT_VARIABLE result OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT result EQUAL 0)
+    message(FATAL_ERROR "expected exit code 0, got '${result}'\n${out}${err}")
+  endif()
+  foreach(expected IN LISTS EXPECT)
+    if(NOT "${out}" MATCHES "${expected}")
+      message(FATAL_ERROR "the output does not match '${expected}':\n${out}${err}")
+    endif()
+  endforeach()
+  message(STATUS "${out}")
 else()
   message(FATAL_ERROR "unknown MODE '${MODE}'")
 endif()

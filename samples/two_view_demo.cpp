@@ -6,9 +6,10 @@ Two-view camera motion with cv::rcme on a real image pair.
 
 Detects SIFT features in two images, matches them (brute force, k = 2, Lowe's ratio test 0.8),
 estimates the relative motion with cv::rcme::recoverPose (or only the fundamental matrix with
-cv::rcme::findFundamentalMat when no camera matrix is given), compares it with the ground truth
-when one is given, and writes a side-by-side picture of the inlier and outlier matches with a few
-epipolar lines.
+cv::rcme::findFundamentalMat when no camera matrix is given) and, on the same matches, with
+OpenCV's own estimator (cv::findEssentialMat RANSAC + cv::recoverPose, or cv::findFundamentalMat
+FM_RANSAC), compares both with the ground truth when one is given, and writes a picture with one
+row per estimator: the inlier and outlier matches and a few epipolar lines.
 
 Without image arguments it runs on the bundled pair of samples/data (fountain-P11, see
 samples/data/PROVENANCE.md) with its camera matrix and ground-truth pose.
@@ -18,6 +19,9 @@ error exceeds --max-rotation-error-deg; 2 usage or input/output error; 3 error r
 library (cv::Exception, e.g. a method that is not implemented).
 */
 
+#include "sample_common.hpp"
+
+#include <opencv2/calib3d.hpp>
 #include <opencv2/core.hpp>
 #include <opencv2/features2d.hpp>
 #include <opencv2/imgcodecs.hpp>
@@ -27,11 +31,8 @@ library (cv::Exception, e.g. a method that is not implemented).
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
-#include <map>
 #include <sstream>
-#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -41,37 +42,31 @@ library (cv::Exception, e.g. a method that is not implemented).
 
 namespace {
 
+using namespace rcme_samples;
+
 const char* const kDefaultImage1 = "fountain_0004.jpg";
 const char* const kDefaultImage2 = "fountain_0006.jpg";
 const char* const kDefaultK = "K.txt";
 const char* const kDefaultGt = "pose_gt.txt";
-
-enum ExitCode
-{
-    EXIT_OK = 0,
-    EXIT_NOT_SUCCESS = 1,
-    EXIT_USAGE = 2,
-    EXIT_LIBRARY_ERROR = 3
-};
-
-//! Usage or input/output error: reported with exit code 2.
-struct UsageError : std::runtime_error
-{
-    explicit UsageError(const std::string& what) : std::runtime_error(what) {}
-};
 
 void printUsage(const char* argv0)
 {
     std::cout
         << "Usage: " << argv0 << " [options] [img1 img2]\n"
         << "\n"
-        << "Estimates the camera motion between two images with cv::rcme (SIFT + ratio test).\n"
+        << "Estimates the camera motion between two images with cv::rcme (SIFT + ratio test)\n"
+        << "and, on the same matches, with OpenCV's estimator; draws both side by side.\n"
         << "Without images, runs on the bundled pair of " << RCME_SAMPLES_DATA_DIR << "\n"
         << "with its camera matrix and ground-truth pose.\n"
         << "\n"
         << "Options (--key value or --key=value):\n"
-        << "  --method M      standard (default), rcme, prcme, mlesac, cov-ransac\n"
+        << "  --method M      rcme's method: " << methodNames() << "\n"
+        << "                  (default standard)\n"
         << "  --solver S      eight (default), seven, five\n"
+        << "  --opencv-method O  essential (findEssentialMat RANSAC + recoverPose; needs a\n"
+        << "                  camera matrix), fundamental (findFundamentalMat FM_RANSAC), or\n"
+        << "                  none. Default: essential with a camera matrix, else fundamental.\n"
+        << "  --opencv-threshold T  OpenCV's inlier threshold in pixels (default: rcme's)\n"
         << "  --k FILE        3x3 camera matrix (9 numbers); 'none' estimates only F.\n"
         << "                  Default: the bundled K.txt without images, none with images.\n"
         << "  --gt FILE       ground truth: R (3 rows) then unit t, x2 = R x1 + t; 'none'\n"
@@ -82,20 +77,23 @@ void printUsage(const char* argv0)
         << "  --sigma S       noise sigma in pixels (Params::sigma, default 1)\n"
         << "  --threshold T   inlier threshold in pixels (Params::threshold, default: from "
            "sigma)\n"
-        << "  --seed N        random generator state (default 0)\n"
+        << "  --seed N        random generator state of both estimators (default 0)\n"
         << "  --max-rotation-error-deg X\n"
-        << "                  exit with 1 when the rotation error w.r.t. the ground truth\n"
+        << "                  exit with 1 when rcme's rotation error w.r.t. the ground truth\n"
         << "                  exceeds X degrees (needs a camera matrix and ground truth)\n"
         << "  -h, --help      this help\n"
         << "\n"
-        << "Exit codes: 0 success; 1 estimation not successful or rotation error too large;\n"
-        << "2 usage or input/output error; 3 error raised by the library.\n";
+        << "Exit codes (from rcme's result; OpenCV's is only shown): 0 success; 1 estimation\n"
+        << "not successful or rotation error too large; 2 usage or input/output error; 3 error\n"
+        << "raised by the library.\n";
 }
 
 struct Options
 {
     std::string method = "standard";
     std::string solver = "eight";
+    std::string opencvMethod; // empty: essential with a camera matrix, else fundamental
+    double opencvThreshold = 0.0; // <= 0: the same as rcme's
     std::string kPath;  // empty: default, "none": uncalibrated
     std::string gtPath; // empty: default, "none": no ground truth
     std::string dataDir = RCME_SAMPLES_DATA_DIR;
@@ -108,63 +106,24 @@ struct Options
     bool help = false;
 };
 
-double parseDouble(const std::string& key, const std::string& value)
-{
-    try {
-        size_t used = 0;
-        double v = std::stod(value, &used);
-        if (used == value.size() && std::isfinite(v))
-            return v;
-    } catch (const std::exception&) {
-    }
-    throw UsageError("--" + key + " expects a number, got '" + value + "'");
-}
-
-int parseInt(const std::string& key, const std::string& value)
-{
-    try {
-        size_t used = 0;
-        int v = std::stoi(value, &used);
-        if (used == value.size())
-            return v;
-    } catch (const std::exception&) {
-    }
-    throw UsageError("--" + key + " expects an integer, got '" + value + "'");
-}
-
 Options parseArgs(int argc, char** argv)
 {
+    const CommandLine cmd(argc, argv,
+                          {"method", "solver", "opencv-method", "opencv-threshold", "k", "gt",
+                           "data", "out", "sigma", "threshold", "seed",
+                           "max-rotation-error-deg"});
     Options opt;
-    const std::vector<std::string> valueKeys = {
-        "method", "solver", "k",         "gt",   "data",
-        "out",    "sigma",  "threshold", "seed", "max-rotation-error-deg"};
-    for (int i = 1; i < argc; ++i) {
-        std::string arg = argv[i];
-        if (arg == "-h" || arg == "--help" || arg == "-help" || arg == "-?") {
-            opt.help = true;
-            continue;
-        }
-        if (arg.size() < 2 || arg[0] != '-' || arg == "--") {
-            opt.images.push_back(arg);
-            continue;
-        }
-        std::string key = arg.substr(arg[1] == '-' ? 2 : 1);
-        std::string value;
-        const size_t eq = key.find('=');
-        if (eq != std::string::npos) {
-            value = key.substr(eq + 1);
-            key = key.substr(0, eq);
-        } else {
-            if (std::find(valueKeys.begin(), valueKeys.end(), key) == valueKeys.end())
-                throw UsageError("unknown option '" + arg + "' (see --help)");
-            if (i + 1 >= argc)
-                throw UsageError("option --" + key + " needs a value");
-            value = argv[++i];
-        }
+    opt.help = cmd.help;
+    opt.images = cmd.positional;
+    for (const auto& [key, value] : cmd.options) {
         if (key == "method")
             opt.method = value;
         else if (key == "solver")
             opt.solver = value;
+        else if (key == "opencv-method")
+            opt.opencvMethod = value;
+        else if (key == "opencv-threshold")
+            opt.opencvThreshold = parseDouble(key, value);
         else if (key == "k")
             opt.kPath = value;
         else if (key == "gt")
@@ -181,69 +140,25 @@ Options parseArgs(int argc, char** argv)
             opt.seed = parseInt(key, value);
         else if (key == "max-rotation-error-deg")
             opt.maxRotationErrorDeg = parseDouble(key, value);
-        else
-            throw UsageError("unknown option '" + arg + "' (see --help)");
     }
     if (!opt.images.empty() && opt.images.size() != 2)
         throw UsageError("expected two images (img1 img2) or none, got " +
                          std::to_string(opt.images.size()));
     if (opt.outPath.empty())
         throw UsageError("--out needs a file name");
+    if (!opt.opencvMethod.empty() && opt.opencvMethod != "essential" &&
+        opt.opencvMethod != "fundamental" && opt.opencvMethod != "none")
+        throw UsageError("unknown --opencv-method '" + opt.opencvMethod +
+                         "' (essential, fundamental, none)");
     return opt;
 }
 
-cv::rcme::Method parseMethod(const std::string& name)
-{
-    static const std::map<std::string, cv::rcme::Method> methods = {
-        {"standard", cv::rcme::METHOD_STANDARD},     {"rcme", cv::rcme::METHOD_RCME},
-        {"prcme", cv::rcme::METHOD_PRCME},           {"mlesac", cv::rcme::METHOD_MLESAC},
-        {"cov-ransac", cv::rcme::METHOD_COV_RANSAC}, {"cov_ransac", cv::rcme::METHOD_COV_RANSAC},
-        {"covransac", cv::rcme::METHOD_COV_RANSAC}};
-    auto it = methods.find(name);
-    if (it == methods.end())
-        throw UsageError("unknown --method '" + name +
-                         "' (standard, rcme, prcme, mlesac, cov-ransac)");
-    return it->second;
-}
-
-cv::rcme::MinimalSolverKind parseSolver(const std::string& name)
-{
-    if (name == "eight" || name == "8")
-        return cv::rcme::SOLVER_EIGHT_POINT;
-    if (name == "seven" || name == "7")
-        return cv::rcme::SOLVER_SEVEN_POINT;
-    if (name == "five" || name == "5")
-        return cv::rcme::SOLVER_FIVE_POINT;
-    throw UsageError("unknown --solver '" + name + "' (eight, seven, five)");
-}
-
-//! Reads whitespace-separated numbers; '#' starts a comment that runs to the end of the line.
+//! All the numbers of a small text file, in reading order.
 std::vector<double> readNumbers(const std::string& path, size_t expected, const char* what)
 {
-    std::ifstream in(path);
-    if (!in)
-        throw UsageError(std::string("cannot open ") + what + " file '" + path + "'");
     std::vector<double> values;
-    std::string line;
-    while (std::getline(in, line)) {
-        const size_t hash = line.find('#');
-        if (hash != std::string::npos)
-            line.resize(hash);
-        std::istringstream ss(line);
-        std::string token;
-        while (ss >> token) {
-            try {
-                size_t used = 0;
-                double v = std::stod(token, &used);
-                if (used != token.size() || !std::isfinite(v))
-                    throw std::invalid_argument(token);
-                values.push_back(v);
-            } catch (const std::exception&) {
-                throw UsageError(std::string("bad number '") + token + "' in " + what + " file '" +
-                                 path + "'");
-            }
-        }
-    }
+    for (const auto& row : readNumberRows(path, what))
+        values.insert(values.end(), row.begin(), row.end());
     if (values.size() != expected)
         throw UsageError(std::string(what) + " file '" + path + "' must hold " +
                          std::to_string(expected) + " numbers, found " +
@@ -424,13 +339,164 @@ cv::Mat drawMatches(const cv::Mat& img1, const cv::Mat& img2, const std::vector<
     return canvas;
 }
 
-std::string fixed(double v, int digits)
+//! One estimator's result on the matches, as drawn in one row of the picture.
+struct Estimate
 {
-    std::ostringstream ss;
-    ss.setf(std::ios::fixed);
-    ss.precision(digits);
-    ss << v;
-    return ss.str();
+    std::string name;     //!< e.g. "cv::rcme::recoverPose, method rcme"
+    bool success = false; //!< rcme: STATUS_SUCCESS; OpenCV: a model was returned
+    std::string outcome;  //!< status text
+    cv::Mat F, R, t, mask;
+    int inliers = 0;
+    double milliseconds = 0;
+    double rotationErrorDeg = -1, translationErrorDeg = -1;
+};
+
+Estimate estimateWithRcme(const std::vector<cv::Point2f>& pts1,
+                          const std::vector<cv::Point2f>& pts2, const cv::Mat& K,
+                          const cv::rcme::Params& params, const std::string& methodName)
+{
+    Estimate est;
+    cv::Mat E, covariance;
+    cv::rcme::Status status = cv::rcme::STATUS_SUCCESS;
+    cv::TickMeter tm;
+    tm.start();
+    if (!K.empty()) {
+        est.name = "cv::rcme::recoverPose, method " + methodName;
+        est.inliers =
+            cv::rcme::recoverPose(pts1, pts2, K, E, est.R, est.t, params, est.mask, status,
+                                  covariance);
+    } else {
+        est.name = "cv::rcme::findFundamentalMat, method " + methodName;
+        est.F = cv::rcme::findFundamentalMat(pts1, pts2, params, est.mask, status);
+        est.inliers = est.mask.empty() ? 0 : cv::countNonZero(est.mask);
+    }
+    tm.stop();
+    est.milliseconds = tm.getTimeMilli();
+    est.success = status == cv::rcme::STATUS_SUCCESS;
+    est.outcome = cv::rcme::statusToString(status);
+    if (est.success && !E.empty()) {
+        const cv::Mat Kinv = K.inv();
+        est.F = Kinv.t() * E * Kinv;
+        est.F /= cv::norm(est.F);
+    }
+
+    std::cout << "\n[" << est.name << "]\n"
+              << "status: " << est.outcome << "\n"
+              << "time: " << fixed(est.milliseconds, 2) << " ms\n";
+    if (!est.success) {
+        std::cout << "estimation failed: " << statusExplanation(status) << "\n";
+        return est;
+    }
+    if (covariance.rows == 5 && covariance.cols == 5) {
+        cv::Mat sd;
+        cv::sqrt(covariance.diag(), sd);
+        std::cout << "std of the rotation increment (deg): "
+                  << fixed(sd.at<double>(0) * 180 / CV_PI, 4) << " "
+                  << fixed(sd.at<double>(1) * 180 / CV_PI, 4) << " "
+                  << fixed(sd.at<double>(2) * 180 / CV_PI, 4)
+                  << ", of the translation direction (deg): "
+                  << fixed(sd.at<double>(3) * 180 / CV_PI, 4) << " "
+                  << fixed(sd.at<double>(4) * 180 / CV_PI, 4) << "\n";
+    }
+    return est;
+}
+
+/** OpenCV's estimator on the same matches: findEssentialMat (RANSAC) + recoverPose, or
+findFundamentalMat (FM_RANSAC), whose F gives a motion through E = K^T F K when K is known. */
+Estimate estimateWithOpencv(const std::vector<cv::Point2f>& pts1,
+                            const std::vector<cv::Point2f>& pts2, const cv::Mat& K,
+                            const std::string& method, double threshold, double confidence,
+                            int seed)
+{
+    Estimate est;
+    cv::theRNG().state = static_cast<uint64>(seed) + 1; // OpenCV's RANSAC draws from it
+    cv::TickMeter tm;
+    tm.start();
+    cv::Mat E;
+    if (method == "essential") {
+        est.name = "OpenCV findEssentialMat RANSAC + recoverPose";
+        if (pts1.size() >= 5)
+            E = cv::findEssentialMat(pts1, pts2, K, cv::RANSAC, confidence, threshold,
+                                     est.mask);
+    } else {
+        est.name = "OpenCV findFundamentalMat FM_RANSAC";
+        if (pts1.size() >= 8)
+            est.F = cv::findFundamentalMat(pts1, pts2, cv::FM_RANSAC, threshold, confidence,
+                                           est.mask);
+        if (est.F.rows > 3)
+            est.F = est.F.rowRange(0, 3).clone(); // the first of several solutions
+        if (!est.F.empty() && !K.empty())
+            E = K.t() * est.F * K;
+    }
+    if (E.rows > 3)
+        E = E.rowRange(0, 3).clone(); // the first of several solutions
+    if (!E.empty() && !K.empty()) {
+        cv::Mat poseMask = est.mask.clone();
+        est.inliers = cv::recoverPose(E, pts1, pts2, K, est.R, est.t, poseMask);
+        if (method == "essential") {
+            est.mask = poseMask; // as cv::recoverPose leaves it: inliers passing cheirality
+            const cv::Mat Kinv = K.inv();
+            est.F = Kinv.t() * E * Kinv;
+        }
+    }
+    tm.stop();
+    est.milliseconds = tm.getTimeMilli();
+    if (method == "fundamental")
+        est.inliers = est.mask.empty() ? 0 : cv::countNonZero(est.mask);
+    if (!est.F.empty())
+        est.F /= cv::norm(est.F);
+    est.success = !est.F.empty();
+    est.outcome = est.success ? "model returned" : "no model returned";
+    if (est.mask.empty())
+        est.mask = cv::Mat::zeros(static_cast<int>(pts1.size()), 1, CV_8U);
+    std::cout << "\n[" << est.name << "]\n"
+              << "result: " << est.outcome << " (OpenCV has no failure status)\n"
+              << "time: " << fixed(est.milliseconds, 2) << " ms\n";
+    return est;
+}
+
+//! Prints an estimate's model and its errors against the ground truth (when both are known).
+void reportEstimate(Estimate& est, size_t numMatches, const cv::Mat& K, const cv::Mat& Rgt,
+                    const cv::Mat& tgt)
+{
+    if (!est.success)
+        return;
+    std::cout << "inliers: " << est.inliers << " / " << numMatches
+              << (est.R.empty() || est.name.find("Fundamental") != std::string::npos
+                      ? ""
+                      : " (passing cheirality)")
+              << "\n"
+              << "F = " << formatMat(est.F) << "\n";
+    if (!est.R.empty())
+        std::cout << "R = " << formatMat(est.R) << "\n"
+                  << "t = " << formatMat(est.t.t()) << "^T\n";
+    if (!est.R.empty() && !Rgt.empty()) {
+        const cv::rcme::MotionError err = cv::rcme::compareMotion(est.R, est.t, Rgt, tgt);
+        est.rotationErrorDeg = err.rotationDeg;
+        est.translationErrorDeg = err.translationDeg;
+        std::cout << "rotation error: " << fixed(est.rotationErrorDeg, 3) << " deg\n"
+                  << "translation direction error: " << fixed(est.translationErrorDeg, 3)
+                  << " deg\n";
+    } else if (!Rgt.empty() && K.empty()) {
+        std::cout << "ground truth given but no camera matrix: motion errors not computed\n";
+    }
+}
+
+//! The banner lines of an estimate's row in the picture.
+std::vector<std::string> bannerOf(const Estimate& est, size_t numMatches, double threshold)
+{
+    std::vector<std::string> header;
+    header.push_back(est.name + ": " + est.outcome + ", " + std::to_string(est.inliers) + " / " +
+                     std::to_string(numMatches) + " matches are inliers, " +
+                     fixed(est.milliseconds, 1) + " ms, threshold " + fixed(threshold, 2) +
+                     " px");
+    if (est.rotationErrorDeg >= 0)
+        header.push_back("error vs ground truth: rotation " + fixed(est.rotationErrorDeg, 2) +
+                         " deg, translation direction " + fixed(est.translationErrorDeg, 2) +
+                         " deg");
+    header.push_back("green: inliers, red: outliers (at most 150 lines each)" +
+                     std::string(est.F.empty() ? "" : ", colours: epipolar lines of 8 inliers"));
+    return header;
 }
 
 int run(int argc, char** argv)
@@ -456,6 +522,8 @@ int run(int argc, char** argv)
     params.sigma = opt.sigma;
     params.threshold = opt.threshold;
     params.randomGeneratorState = opt.seed;
+    // rcme's inlier threshold: Params::threshold, or 1.96 sigma (chi2 with 1 DoF at 0.95)
+    const double rcmeThreshold = opt.threshold > 0 ? opt.threshold : 1.959964 * opt.sigma;
 
     const cv::Mat img1 = readImage(path1), img2 = readImage(path2);
     cv::Mat K, Rgt, tgt;
@@ -466,6 +534,11 @@ int run(int argc, char** argv)
     if (opt.maxRotationErrorDeg >= 0 && (K.empty() || Rgt.empty()))
         throw UsageError("--max-rotation-error-deg needs a camera matrix (--k) and a ground "
                          "truth (--gt)");
+    const std::string opencvMethod =
+        !opt.opencvMethod.empty() ? opt.opencvMethod : (K.empty() ? "fundamental" : "essential");
+    if (opencvMethod == "essential" && K.empty())
+        throw UsageError("--opencv-method essential needs a camera matrix (--k)");
+    const double opencvThreshold = opt.opencvThreshold > 0 ? opt.opencvThreshold : rcmeThreshold;
 
     std::cout << "image 1: " << path1 << " (" << img1.cols << "x" << img1.rows << ")\n"
               << "image 2: " << path2 << " (" << img2.cols << "x" << img2.rows << ")\n"
@@ -474,7 +547,9 @@ int run(int argc, char** argv)
               << "ground truth: " << (gtPath.empty() ? "none" : gtPath) << "\n"
               << "method: " << opt.method << ", solver: " << opt.solver
               << ", sigma: " << params.sigma << " px, seed: " << params.randomGeneratorState
-              << "\n";
+              << "\n"
+              << "OpenCV: " << opencvMethod << ", threshold " << fixed(opencvThreshold, 2)
+              << " px\n";
 
     // Features and matches: SIFT, brute force k = 2, Lowe's ratio test 0.8.
     cv::TickMeter tmFeatures;
@@ -484,105 +559,40 @@ int run(int argc, char** argv)
     cv::Mat desc1, desc2;
     sift->detectAndCompute(img1, cv::noArray(), kp1, desc1);
     sift->detectAndCompute(img2, cv::noArray(), kp2, desc2);
-    std::vector<cv::Point2f> pts1, pts2;
-    if (!desc1.empty() && !desc2.empty()) {
-        cv::BFMatcher matcher(cv::NORM_L2);
-        std::vector<std::vector<cv::DMatch>> knn;
-        matcher.knnMatch(desc1, desc2, knn, 2);
-        for (const auto& m : knn)
-            if (m.size() == 2 && m[0].distance < 0.8f * m[1].distance) {
-                pts1.push_back(kp1[m[0].queryIdx].pt);
-                pts2.push_back(kp2[m[0].trainIdx].pt);
-            }
-    }
+    const Matches matches = matchRatioTest(kp1, desc1, kp2, desc2);
+    const std::vector<cv::Point2f>&pts1 = matches.points1, &pts2 = matches.points2;
     tmFeatures.stop();
     std::cout << "keypoints: " << kp1.size() << " / " << kp2.size()
               << ", matches after ratio test: " << pts1.size() << " ("
               << fixed(tmFeatures.getTimeMilli(), 1) << " ms)\n";
 
-    // Robust estimation.
-    cv::Mat E, R, t, F, mask, covariance;
-    cv::rcme::Status status = cv::rcme::STATUS_SUCCESS;
-    int inliers = 0;
-    cv::TickMeter tm;
-    tm.start();
-    if (!K.empty()) {
-        inliers = cv::rcme::recoverPose(pts1, pts2, K, E, R, t, params, mask, status, covariance);
-    } else {
-        F = cv::rcme::findFundamentalMat(pts1, pts2, params, mask, status);
-        inliers = mask.empty() ? 0 : cv::countNonZero(mask);
-    }
-    tm.stop();
-    if (status == cv::rcme::STATUS_SUCCESS && !E.empty()) {
-        const cv::Mat Kinv = K.inv();
-        F = Kinv.t() * E * Kinv;
-        F /= cv::norm(F);
+    // Robust estimation: rcme, then OpenCV on the same matches.
+    std::vector<Estimate> estimates;
+    estimates.push_back(estimateWithRcme(pts1, pts2, K, params, opt.method));
+    reportEstimate(estimates.back(), pts1.size(), K, Rgt, tgt);
+    if (opencvMethod != "none") {
+        estimates.push_back(estimateWithOpencv(pts1, pts2, K, opencvMethod, opencvThreshold,
+                                               params.confidence, opt.seed));
+        reportEstimate(estimates.back(), pts1.size(), K, Rgt, tgt);
     }
 
-    std::cout << "status: " << cv::rcme::statusToString(status) << "\n"
-              << "time: " << fixed(tm.getTimeMilli(), 2) << " ms\n";
-    if (status == cv::rcme::STATUS_SUCCESS) {
-        std::cout << "inliers: " << inliers << " / " << pts1.size()
-                  << (K.empty() ? "" : " (passing cheirality)") << "\n"
-                  << "F = " << formatMat(F) << "\n";
-        if (!K.empty())
-            std::cout << "R = " << formatMat(R) << "\n"
-                      << "t = " << formatMat(t.t()) << "^T\n";
-        if (covariance.rows == 5 && covariance.cols == 5) {
-            cv::Mat sd;
-            cv::sqrt(covariance.diag(), sd);
-            std::cout << "std of the rotation increment (deg): "
-                      << fixed(sd.at<double>(0) * 180 / CV_PI, 4) << " "
-                      << fixed(sd.at<double>(1) * 180 / CV_PI, 4) << " "
-                      << fixed(sd.at<double>(2) * 180 / CV_PI, 4)
-                      << ", of the translation direction (deg): "
-                      << fixed(sd.at<double>(3) * 180 / CV_PI, 4) << " "
-                      << fixed(sd.at<double>(4) * 180 / CV_PI, 4) << "\n";
-        }
-    } else {
-        std::cout << "estimation failed: " << statusExplanation(status) << "\n";
-    }
+    // Picture: one row per estimator, the same matches.
+    std::vector<cv::Mat> rows;
+    for (size_t k = 0; k < estimates.size(); ++k)
+        rows.push_back(drawMatches(img1, img2, pts1, pts2, estimates[k].mask, estimates[k].F,
+                                   bannerOf(estimates[k], pts1.size(),
+                                            k == 0 ? rcmeThreshold : opencvThreshold)));
+    cv::Mat canvas;
+    cv::vconcat(rows, canvas);
+    std::cout << "\nwrote " << writePicture(opt.outPath, canvas) << "\n";
 
-    double rotationErrorDeg = -1, translationErrorDeg = -1;
-    if (status == cv::rcme::STATUS_SUCCESS && !R.empty() && !Rgt.empty()) {
-        const cv::rcme::MotionError err = cv::rcme::compareMotion(R, t, Rgt, tgt);
-        rotationErrorDeg = err.rotationDeg;
-        translationErrorDeg = err.translationDeg;
-        std::cout << "rotation error: " << fixed(rotationErrorDeg, 3) << " deg\n"
-                  << "translation direction error: " << fixed(translationErrorDeg, 3) << " deg\n";
-    } else if (!Rgt.empty() && K.empty()) {
-        std::cout << "ground truth given but no camera matrix: motion errors not computed\n";
-    }
-
-    // Picture.
-    std::vector<std::string> header;
-    header.push_back("cv::rcme, method " + opt.method + ": " + cv::rcme::statusToString(status) +
-                     ", " + std::to_string(inliers) + " / " + std::to_string(pts1.size()) +
-                     " matches are inliers, " + fixed(tm.getTimeMilli(), 1) + " ms");
-    if (rotationErrorDeg >= 0)
-        header.push_back("error vs ground truth: rotation " + fixed(rotationErrorDeg, 2) +
-                         " deg, translation direction " + fixed(translationErrorDeg, 2) + " deg");
-    header.push_back("green: inliers, red: outliers (at most 150 lines each)" +
-                     std::string(F.empty() ? "" : ", colours: epipolar lines of 8 inliers"));
-    const cv::Mat canvas = drawMatches(img1, img2, pts1, pts2, mask, F, header);
-    const std::filesystem::path outPath = std::filesystem::absolute(opt.outPath);
-    std::error_code ec;
-    if (outPath.has_parent_path())
-        std::filesystem::create_directories(outPath.parent_path(), ec);
-    bool written = false;
-    try {
-        written = cv::imwrite(outPath.string(), canvas);
-    } catch (const cv::Exception& e) {
-        throw UsageError("cannot write '" + outPath.string() + "': " + e.what());
-    }
-    if (!written)
-        throw UsageError("cannot write '" + outPath.string() + "'");
-    std::cout << "wrote " << outPath.string() << "\n";
-
-    if (status != cv::rcme::STATUS_SUCCESS)
+    const Estimate& rcmeEstimate = estimates.front();
+    if (!rcmeEstimate.success)
         return EXIT_NOT_SUCCESS;
-    if (opt.maxRotationErrorDeg >= 0 && !(rotationErrorDeg <= opt.maxRotationErrorDeg)) {
-        std::cout << "FAILED: rotation error " << fixed(rotationErrorDeg, 3)
+    if (opt.maxRotationErrorDeg >= 0 &&
+        !(rcmeEstimate.rotationErrorDeg >= 0 &&
+          rcmeEstimate.rotationErrorDeg <= opt.maxRotationErrorDeg)) {
+        std::cout << "FAILED: rotation error " << fixed(rcmeEstimate.rotationErrorDeg, 3)
                   << " deg exceeds --max-rotation-error-deg " << opt.maxRotationErrorDeg << "\n";
         return EXIT_NOT_SUCCESS;
     }
@@ -593,16 +603,5 @@ int run(int argc, char** argv)
 
 int main(int argc, char** argv)
 {
-    try {
-        return run(argc, argv);
-    } catch (const UsageError& e) {
-        std::cerr << "error: " << e.what() << "\n(run with --help for the usage)\n";
-        return EXIT_USAGE;
-    } catch (const cv::Exception& e) {
-        std::cerr << "OpenCV error: " << e.what() << "\n";
-        return EXIT_LIBRARY_ERROR;
-    } catch (const std::exception& e) {
-        std::cerr << "error: " << e.what() << "\n";
-        return EXIT_LIBRARY_ERROR;
-    }
+    return runSample([&] { return run(argc, argv); });
 }
