@@ -16,6 +16,11 @@ motion of the pair is estimated.
 - OpenCV (cv::findEssentialMat with RANSAC, then cv::recoverPose): there is no failure signal, so
   every pair with an essential matrix is accepted.
 
+--bad-frames simulates frames whose matches are all wrong (a glare, motion blur, a duplicated or
+dropped frame): every match of a pair that involves such a frame is re-paired at random. On the
+clean KITTI frames rcme never reports PQI (doc/results.md); with bad frames it does, and
+re-selects, while OpenCV accepts the wrong motion.
+
 If no candidate of the window can be accepted (or the matches run out), the track is bridged:
 the first keyframe moves to the last tried frame with the previous accepted rotation and
 translation direction (constant motion) and the gap is counted.
@@ -51,6 +56,7 @@ folder); 3 error raised by the library.
 #include <iostream>
 #include <map>
 #include <memory>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -89,6 +95,8 @@ void printUsage(const char* argv0)
         << "  --max-reselect N    later frames tried after a rejected pair (default 5)\n"
         << "  --min-matches N     fewer matches end the keyframe search (default 60)\n"
         << "  --features N        SIFT features per frame (default 3000)\n"
+        << "  --bad-frames LIST   comma-separated frames whose matches are re-paired at random,\n"
+        << "                      simulating unusable frames (default: none)\n"
         << "  --opencv-threshold PX  findEssentialMat's threshold (default 1, OpenCV's default)\n"
         << "  --opencv-prob P     findEssentialMat's confidence (default 0.999)\n"
         << "  --no-opencv         skip the OpenCV run\n"
@@ -116,6 +124,7 @@ struct Options
     int maxReselect = 5;
     int minMatches = 60;
     int features = 3000;
+    std::vector<int> badFrames;
     double opencvThreshold = 1.0;
     double opencvProb = 0.999;
     bool runOpencv = true;
@@ -130,7 +139,7 @@ Options parseArgs(int argc, char** argv)
     const CommandLine cmd(argc, argv,
                           {"data", "sequence", "frames", "method", "solver", "sigma", "seed",
                            "min-parallax", "max-reselect", "min-matches", "features",
-                           "opencv-threshold", "opencv-prob", "out",
+                           "opencv-threshold", "opencv-prob", "out", "bad-frames",
                            "max-median-rotation-error-deg"},
                           {"no-opencv", "verbose", "v"});
     Options opt;
@@ -164,7 +173,13 @@ Options parseArgs(int argc, char** argv)
             opt.opencvThreshold = parseDouble(key, value);
         else if (key == "opencv-prob")
             opt.opencvProb = parseDouble(key, value);
-        else if (key == "no-opencv")
+        else if (key == "bad-frames") {
+            std::stringstream list(value);
+            std::string item;
+            while (std::getline(list, item, ','))
+                if (!item.empty())
+                    opt.badFrames.push_back(parseInt(key, item));
+        } else if (key == "no-opencv")
             opt.runOpencv = false;
         else if (key == "out")
             opt.outPath = value;
@@ -311,8 +326,9 @@ Sequence readSequence(const Options& opt)
 class FeatureCache
 {
 public:
-    FeatureCache(const Sequence& seq, int features)
-        : seq_(seq), sift_(cv::SIFT::create(features)), frames_(seq.images.size())
+    FeatureCache(const Sequence& seq, int features, const std::vector<int>& badFrames)
+        : seq_(seq), sift_(cv::SIFT::create(features)), frames_(seq.images.size()),
+          badFrames_(badFrames)
     {
     }
 
@@ -330,6 +346,13 @@ public:
         const Frame &a = frame(i), &b = frame(j);
         PairMatches pm;
         pm.matches = matchRatioTest(a.keypoints, a.descriptors, b.keypoints, b.descriptors);
+        if (isBad(i) || isBad(j)) {
+            // an unusable frame: every point keeps its position but gets a random partner
+            cv::RNG rng(static_cast<uint64>(1000003) * i + j);
+            std::vector<cv::Point2f>& p2 = pm.matches.points2;
+            for (int k = static_cast<int>(p2.size()) - 1; k > 0; --k)
+                std::swap(p2[k], p2[rng.uniform(0, k + 1)]);
+        }
         std::vector<double> flow;
         for (size_t k = 0; k < pm.matches.points1.size(); ++k)
             flow.push_back(cv::norm(pm.matches.points2[k] - pm.matches.points1[k]));
@@ -343,6 +366,11 @@ public:
     double featureMilliseconds() const { return featureTime_.getTimeMilli(); }
 
 private:
+    bool isBad(int frame) const
+    {
+        return std::find(badFrames_.begin(), badFrames_.end(), frame) != badFrames_.end();
+    }
+
     struct Frame
     {
         bool ready = false;
@@ -370,6 +398,7 @@ private:
     std::vector<Frame> frames_;
     std::map<std::pair<int, int>, PairMatches> pairs_;
     cv::TickMeter featureTime_;
+    std::vector<int> badFrames_;
 };
 
 // ---------------------------------------------------------------------------------------------
@@ -418,12 +447,11 @@ PairEstimator opencvEstimator(double threshold, double prob, int seed)
         cv::theRNG().state = static_cast<uint64>(seed) + 1; // OpenCV's RANSAC draws from it
         cv::TickMeter tm;
         tm.start();
-        const cv::Mat E =
-            cv::findEssentialMat(m.points1, m.points2, cv::Mat(K), cv::RANSAC, prob, threshold,
-                                 mask);
+        const cv::Mat E = cv::findEssentialMat(m.points1, m.points2, cv::Mat(K), cv::RANSAC, prob,
+                                               threshold, mask);
         if (E.rows >= 3 && E.cols == 3)
-            est.inliers = cv::recoverPose(E.rowRange(0, 3), m.points1, m.points2, cv::Mat(K), R,
-                                          t, mask);
+            est.inliers =
+                cv::recoverPose(E.rowRange(0, 3), m.points1, m.points2, cv::Mat(K), R, t, mask);
         tm.stop();
         est.milliseconds = tm.getTimeMilli();
         // No failure signal: whatever E it returns is accepted, as a VO front end would.
@@ -509,8 +537,8 @@ VoRun runOdometry(const Sequence& seq, FeatureCache& cache, const Options& opt,
             const auto& pm = cache.matches(keyframe, candidate);
             const int numMatches = static_cast<int>(pm.matches.points1.size());
             if (numMatches < opt.minMatches) {
-                std::cout << "  " << label << ": keyframe pair " << keyframe << " -> "
-                          << candidate << " has " << numMatches << " matches, too few\n";
+                std::cout << "  " << label << ": keyframe pair " << keyframe << " -> " << candidate
+                          << " has " << numMatches << " matches, too few\n";
                 break; // later frames only have fewer
             }
             if (pm.medianParallax < opt.minParallax && lastTried == keyframe) {
@@ -609,23 +637,42 @@ Summary summarize(const Sequence& seq, const VoRun& run)
     s.ateRmse = std::sqrt(sq / run.keyframes.size());
     s.pathLength = 0;
     for (int f = 1; f <= s.finalFrame; ++f)
-        s.pathLength += cv::norm(translationOf(seq.groundTruth[f]) -
-                                 translationOf(seq.groundTruth[f - 1]));
+        s.pathLength +=
+            cv::norm(translationOf(seq.groundTruth[f]) - translationOf(seq.groundTruth[f - 1]));
     return s;
 }
 
-//! Top view (x right, z forward) of the ground truth and the runs, with a legend.
-cv::Mat drawTrajectories(const Sequence& seq, const std::vector<const VoRun*>& runs,
-                         const std::vector<std::string>& legend, const std::string& title)
-{
-    const cv::Scalar gtColor(40, 40, 40), background(255, 255, 255);
-    const cv::Scalar runColors[] = {cv::Scalar(200, 60, 0), cv::Scalar(0, 100, 230)};
-    const cv::Scalar rejectionColor(0, 0, 220);
-    const int plotSize = 720, margin = 50, titleHeight = 30;
-    const int legendLine = 22;
-    const int legendHeight = legendLine * static_cast<int>(legend.size() + 2) + 10;
+const cv::Scalar kGroundTruthColor(40, 40, 40);
+const cv::Scalar kRejectionColor(0, 0, 220);
 
-    // bounds of everything drawn, equal scale on both axes
+cv::Scalar runColor(size_t r)
+{
+    return r == 0 ? cv::Scalar(200, 60, 0) : cv::Scalar(0, 140, 255);
+}
+
+void putLabel(cv::Mat& canvas, const std::string& text, cv::Point at, double size = 0.45,
+              const cv::Scalar& color = cv::Scalar::all(0))
+{
+    cv::putText(canvas, text, at, cv::FONT_HERSHEY_SIMPLEX, size, color, 1, cv::LINE_AA);
+}
+
+//! A round grid step (1, 2 or 5 times a power of ten) giving about `lines` lines over span.
+double gridStep(double span, double lines)
+{
+    const double raw = span / lines;
+    const double magnitude = std::pow(10.0, std::floor(std::log10(raw)));
+    for (double m : {1.0, 2.0, 5.0})
+        if (m * magnitude >= raw)
+            return m * magnitude;
+    return 10 * magnitude;
+}
+
+/** Top view (x right, z forward, metres, equal scale) of the ground truth and of the runs'
+keyframes, with a cross on the keyframes whose next pair was rejected and re-selected. */
+cv::Mat drawTopView(const Sequence& seq, const std::vector<const VoRun*>& runs, int size)
+{
+    cv::Mat panel(size, size, CV_8UC3, cv::Scalar::all(255));
+    const int margin = 40;
     double minX = 1e300, maxX = -1e300, minZ = 1e300, maxZ = -1e300;
     auto extend = [&](const Pose& T) {
         minX = std::min(minX, T(0, 3));
@@ -639,92 +686,134 @@ cv::Mat drawTrajectories(const Sequence& seq, const std::vector<const VoRun*>& r
         for (const Pose& T : run->keyframePoses)
             extend(T);
     const double span = std::max({maxX - minX, maxZ - minZ, 1.0});
-    const double scale = (plotSize - 2 * margin) / span;
+    const double scale = (size - 2 * margin) / span;
     const double centerX = 0.5 * (minX + maxX), centerZ = 0.5 * (minZ + maxZ);
-    const int top = titleHeight + legendHeight;
-    cv::Mat canvas(top + plotSize, plotSize, CV_8UC3, background);
     auto toPixel = [&](double x, double z) {
-        return cv::Point(cvRound(plotSize / 2 + (x - centerX) * scale),
-                         cvRound(top + plotSize / 2 - (z - centerZ) * scale));
+        return cv::Point(cvRound(size / 2 + (x - centerX) * scale),
+                         cvRound(size / 2 - (z - centerZ) * scale));
     };
-    auto toPixelPose = [&](const Pose& T) { return toPixel(T(0, 3), T(2, 3)); };
+    auto at = [&](const Pose& T) { return toPixel(T(0, 3), T(2, 3)); };
 
-    // grid with metre labels at a round step
-    const double rawStep = span / 6;
-    const double magnitude = std::pow(10.0, std::floor(std::log10(rawStep)));
-    double step = magnitude;
-    for (double m : {2.0, 5.0, 10.0})
-        if (step < rawStep)
-            step = m * magnitude;
-    const double halfExtent = 0.5 * plotSize / scale;
-    for (double x = std::ceil((centerX - halfExtent) / step) * step; x <= centerX + halfExtent;
-         x += step) {
-        const cv::Point p = toPixel(x, centerZ);
-        cv::line(canvas, cv::Point(p.x, top), cv::Point(p.x, top + plotSize),
-                 cv::Scalar::all(225));
-        cv::putText(canvas, fixed(x, 0), cv::Point(p.x + 2, top + plotSize - 6),
-                    cv::FONT_HERSHEY_SIMPLEX, 0.35, cv::Scalar::all(120), 1, cv::LINE_AA);
+    const double step = gridStep(span, 6), half = 0.5 * size / scale;
+    for (double x = std::ceil((centerX - half) / step) * step; x <= centerX + half; x += step) {
+        const int px = toPixel(x, centerZ).x;
+        cv::line(panel, cv::Point(px, 0), cv::Point(px, size), cv::Scalar::all(225));
+        putLabel(panel, fixed(x, step < 1 ? 1 : 0), cv::Point(px + 2, size - 6), 0.35,
+                 cv::Scalar::all(120));
     }
-    for (double z = std::ceil((centerZ - halfExtent) / step) * step; z <= centerZ + halfExtent;
-         z += step) {
-        const cv::Point p = toPixel(centerX, z);
-        cv::line(canvas, cv::Point(0, p.y), cv::Point(plotSize, p.y), cv::Scalar::all(225));
-        cv::putText(canvas, fixed(z, 0), cv::Point(4, p.y - 3), cv::FONT_HERSHEY_SIMPLEX, 0.35,
-                    cv::Scalar::all(120), 1, cv::LINE_AA);
+    for (double z = std::ceil((centerZ - half) / step) * step; z <= centerZ + half; z += step) {
+        const int py = toPixel(centerX, z).y;
+        cv::line(panel, cv::Point(0, py), cv::Point(size, py), cv::Scalar::all(225));
+        putLabel(panel, fixed(z, step < 1 ? 1 : 0), cv::Point(4, py - 3), 0.35,
+                 cv::Scalar::all(120));
     }
-    cv::putText(canvas, "x (m) right, z (m) forward; grid " + fixed(step, 0) + " m",
-                cv::Point(plotSize - 260, top + plotSize - 22), cv::FONT_HERSHEY_SIMPLEX, 0.4,
-                cv::Scalar::all(120), 1, cv::LINE_AA);
+    putLabel(panel, "top view: x (m) right, z (m) forward", cv::Point(8, 18), 0.45,
+             cv::Scalar::all(80));
 
     for (size_t f = 1; f < seq.groundTruth.size(); ++f)
-        cv::line(canvas, toPixelPose(seq.groundTruth[f - 1]), toPixelPose(seq.groundTruth[f]),
-                 gtColor, 2, cv::LINE_AA);
-    for (size_t r = 0; r < runs.size(); ++r) {
+        cv::line(panel, at(seq.groundTruth[f - 1]), at(seq.groundTruth[f]), kGroundTruthColor, 2,
+                 cv::LINE_AA);
+    // the last run first, so that rcme's (thinner) line stays visible on top
+    for (size_t r = runs.size(); r-- > 0;) {
         const VoRun& run = *runs[r];
-        const cv::Scalar& color = runColors[r % 2];
+        const int width = r == 0 ? 2 : 4;
         for (size_t k = 0; k < run.keyframePoses.size(); ++k) {
-            const cv::Point p = toPixelPose(run.keyframePoses[k]);
             if (k > 0)
-                cv::line(canvas, toPixelPose(run.keyframePoses[k - 1]), p, color, 2,
-                         cv::LINE_AA);
-            cv::circle(canvas, p, 3, color, cv::FILLED, cv::LINE_AA);
+                cv::line(panel, at(run.keyframePoses[k - 1]), at(run.keyframePoses[k]), runColor(r),
+                         width, cv::LINE_AA);
+            cv::circle(panel, at(run.keyframePoses[k]), width + 1, runColor(r), cv::FILLED,
+                       cv::LINE_AA);
         }
-        // a cross where a keyframe pair was rejected and re-selected, on that keyframe
         for (const Rejection& rej : run.rejections) {
             const auto it = std::find(run.keyframes.begin(), run.keyframes.end(), rej.first);
-            if (it == run.keyframes.end())
-                continue;
-            const cv::Point p = toPixelPose(run.keyframePoses[it - run.keyframes.begin()]);
-            cv::drawMarker(canvas, p, rejectionColor, cv::MARKER_TILTED_CROSS, 14, 2,
-                           cv::LINE_AA);
+            if (it != run.keyframes.end())
+                cv::drawMarker(panel, at(run.keyframePoses[it - run.keyframes.begin()]),
+                               kRejectionColor, cv::MARKER_TILTED_CROSS, 14, 2, cv::LINE_AA);
         }
     }
+    cv::rectangle(panel, cv::Rect(0, 0, size, size), cv::Scalar::all(160));
+    return panel;
+}
 
-    // title and legend
-    cv::putText(canvas, title, cv::Point(10, 20), cv::FONT_HERSHEY_SIMPLEX, 0.5,
-                cv::Scalar::all(0), 1, cv::LINE_AA);
-    auto legendY = [&](int row) { return titleHeight + legendLine * row + 14; };
-    cv::line(canvas, cv::Point(10, legendY(0) - 4), cv::Point(40, legendY(0) - 4), gtColor, 2,
-             cv::LINE_AA);
-    cv::putText(canvas, "ground truth (KITTI poses.txt)", cv::Point(48, legendY(0)),
-                cv::FONT_HERSHEY_SIMPLEX, 0.45, cv::Scalar::all(0), 1, cv::LINE_AA);
-    for (size_t r = 0; r < legend.size(); ++r) {
-        const int y = legendY(static_cast<int>(r) + 1);
-        cv::line(canvas, cv::Point(10, y - 4), cv::Point(40, y - 4), runColors[r % 2], 2,
-                 cv::LINE_AA);
-        cv::circle(canvas, cv::Point(25, y - 4), 3, runColors[r % 2], cv::FILLED, cv::LINE_AA);
-        cv::putText(canvas, legend[r], cv::Point(48, y), cv::FONT_HERSHEY_SIMPLEX, 0.45,
-                    cv::Scalar::all(0), 1, cv::LINE_AA);
+//! Position error of each run's keyframes against the frame number, logarithmic in metres.
+cv::Mat drawErrorPlot(const Sequence& seq, const std::vector<const VoRun*>& runs, int width,
+                      int height)
+{
+    cv::Mat panel(height, width, CV_8UC3, cv::Scalar::all(255));
+    const int left = 50, right = 15, top = 30, bottom = 30;
+    const int lastFrame = static_cast<int>(seq.groundTruth.size()) - 1;
+    std::vector<std::vector<double>> errors(runs.size());
+    double maxError = 1.0;
+    for (size_t r = 0; r < runs.size(); ++r)
+        for (size_t k = 0; k < runs[r]->keyframes.size(); ++k) {
+            const double e = cv::norm(translationOf(runs[r]->keyframePoses[k]) -
+                                      translationOf(seq.groundTruth[runs[r]->keyframes[k]]));
+            errors[r].push_back(e);
+            maxError = std::max(maxError, e);
+        }
+    const double lowDecade = -2, highDecade = std::ceil(std::log10(maxError));
+    auto toPixel = [&](int frame, double error) {
+        const double y = (std::log10(std::max(error, 0.01)) - lowDecade) / (highDecade - lowDecade);
+        return cv::Point(left + cvRound((width - left - right) * frame / double(lastFrame)),
+                         cvRound(height - bottom - (height - top - bottom) * y));
+    };
+    for (double d = lowDecade; d <= highDecade; ++d) {
+        const int y = toPixel(0, std::pow(10.0, d)).y;
+        cv::line(panel, cv::Point(left, y), cv::Point(width - right, y), cv::Scalar::all(225));
+        putLabel(panel, fixed(std::pow(10.0, d), d < 0 ? static_cast<int>(-d) : 0),
+                 cv::Point(4, y + 4), 0.35, cv::Scalar::all(120));
     }
-    const int y = legendY(static_cast<int>(legend.size()) + 1);
-    cv::drawMarker(canvas, cv::Point(25, y - 4), rejectionColor, cv::MARKER_TILTED_CROSS, 12, 2,
+    const double frameStep = gridStep(lastFrame, 5);
+    for (double f = 0; f <= lastFrame; f += frameStep) {
+        const int x = toPixel(static_cast<int>(f), 1).x;
+        cv::line(panel, cv::Point(x, top), cv::Point(x, height - bottom), cv::Scalar::all(225));
+        putLabel(panel, fixed(f, 0), cv::Point(x - 6, height - 10), 0.35, cv::Scalar::all(120));
+    }
+    putLabel(panel, "position error (m, log scale, <= 0.01 at the bottom) vs frame",
+             cv::Point(8, 18), 0.45, cv::Scalar::all(80));
+    for (size_t r = runs.size(); r-- > 0;)
+        for (size_t k = 0; k < errors[r].size(); ++k) {
+            const cv::Point p = toPixel(runs[r]->keyframes[k], errors[r][k]);
+            if (k > 0)
+                cv::line(panel, toPixel(runs[r]->keyframes[k - 1], errors[r][k - 1]), p,
+                         runColor(r), r == 0 ? 2 : 4, cv::LINE_AA);
+            cv::circle(panel, p, r == 0 ? 3 : 5, runColor(r), cv::FILLED, cv::LINE_AA);
+        }
+    cv::rectangle(panel, cv::Rect(0, 0, width, height), cv::Scalar::all(160));
+    return panel;
+}
+
+//! The picture: title and legend, then the top view and the error plot side by side.
+cv::Mat drawTrajectories(const Sequence& seq, const std::vector<const VoRun*>& runs,
+                         const std::vector<std::string>& legend, const std::string& title)
+{
+    const int plotSize = 640, errorWidth = 520, lineHeight = 22;
+    cv::Mat plots;
+    cv::hconcat(drawTopView(seq, runs, plotSize), drawErrorPlot(seq, runs, errorWidth, plotSize),
+                plots);
+    const int header = lineHeight * static_cast<int>(legend.size() + 3) + 8;
+    cv::Mat canvas(header + plots.rows, plots.cols, CV_8UC3, cv::Scalar::all(255));
+    plots.copyTo(canvas(cv::Rect(0, header, plots.cols, plots.rows)));
+
+    putLabel(canvas, title, cv::Point(10, 20), 0.5);
+    auto rowY = [&](int row) { return lineHeight * (row + 1) + 20; };
+    cv::line(canvas, cv::Point(10, rowY(0) - 4), cv::Point(40, rowY(0) - 4), kGroundTruthColor, 2,
+             cv::LINE_AA);
+    putLabel(canvas, "ground truth (KITTI poses.txt)", cv::Point(48, rowY(0)));
+    for (size_t r = 0; r < legend.size(); ++r) {
+        const int y = rowY(static_cast<int>(r) + 1) - 4;
+        cv::line(canvas, cv::Point(10, y), cv::Point(40, y), runColor(r), r == 0 ? 2 : 4,
+                 cv::LINE_AA);
+        cv::circle(canvas, cv::Point(25, y), r == 0 ? 3 : 5, runColor(r), cv::FILLED, cv::LINE_AA);
+        putLabel(canvas, legend[r], cv::Point(48, y + 4));
+    }
+    const int y = rowY(static_cast<int>(legend.size()) + 1);
+    cv::drawMarker(canvas, cv::Point(25, y - 4), kRejectionColor, cv::MARKER_TILTED_CROSS, 12, 2,
                    cv::LINE_AA);
-    cv::putText(canvas,
-                "keyframe whose pair rcme rejected (PQI / degenerate) and re-selected; "
-                "dots: keyframes",
-                cv::Point(48, y), cv::FONT_HERSHEY_SIMPLEX, 0.45, cv::Scalar::all(0), 1,
-                cv::LINE_AA);
-    cv::rectangle(canvas, cv::Rect(0, top, plotSize, plotSize), cv::Scalar::all(160));
+    putLabel(canvas,
+             "keyframe whose next pair rcme rejected (PQI / degenerate) and re-selected; dots: "
+             "keyframes",
+             cv::Point(48, y));
     return canvas;
 }
 
@@ -751,8 +840,7 @@ int run(int argc, char** argv)
 
     const Sequence seq = readSequence(opt);
     const int n = static_cast<int>(seq.images.size());
-    std::cout << "sequence: " << seq.name << " (" << seq.folder << "), frames 0-" << n - 1
-              << "\n"
+    std::cout << "sequence: " << seq.name << " (" << seq.folder << "), frames 0-" << n - 1 << "\n"
               << "camera: fx " << fixed(seq.K(0, 0), 3) << ", cx " << fixed(seq.K(0, 2), 3)
               << ", cy " << fixed(seq.K(1, 2), 3) << "\n"
               << "keyframes: SIFT (" << opt.features
@@ -761,10 +849,14 @@ int run(int argc, char** argv)
               << "rcme: method " << opt.method << ", solver " << opt.solver << ", sigma "
               << opt.sigma << " px; OpenCV: findEssentialMat RANSAC (threshold "
               << opt.opencvThreshold << " px, prob " << opt.opencvProb << ") + recoverPose\n"
+              << (opt.badFrames.empty() ? std::string()
+                                        : "simulated unusable frames (matches re-paired at "
+                                          "random): " +
+                                              std::to_string(opt.badFrames.size()) + "\n")
               << "scale: each pair's translation is scaled by the ground-truth distance between "
                  "its frames (display only: monocular VO has no scale)\n";
 
-    FeatureCache cache(seq, opt.features);
+    FeatureCache cache(seq, opt.features, opt.badFrames);
     const std::string rcmeLabel = "rcme " + opt.method;
     std::cout << "run 1: " << rcmeLabel << "\n";
     const VoRun rcmeRun = runOdometry(seq, cache, opt, rcmeLabel, rcmeEstimator(params));
@@ -792,47 +884,38 @@ int run(int argc, char** argv)
     std::cout << "\n";
     row("", [&](size_t r) { return r == 0 ? rcmeLabel : std::string("OpenCV RANSAC"); });
     row("keyframes", [&](size_t r) { return std::to_string(runs[r]->keyframes.size()); });
-    row("keyframe pairs estimated", [&](size_t r) {
-        return std::to_string(runs[r]->pairs.size());
-    });
+    row("keyframe pairs estimated",
+        [&](size_t r) { return std::to_string(runs[r]->pairs.size()); });
     row("PQI re-selections", [&](size_t r) {
-        return r == 0 ? countsByVerdict(*runs[r], cv::rcme::statusToString(
-                                                      cv::rcme::STATUS_POOR_QUALITY_INPUT))
+        return r == 0 ? countsByVerdict(
+                            *runs[r], cv::rcme::statusToString(cv::rcme::STATUS_POOR_QUALITY_INPUT))
                       : std::string("- (no failure signal)");
     });
     row("other re-selections (degenerate, no E, ...)", [&](size_t r) {
-        const std::string pqi =
-            cv::rcme::statusToString(cv::rcme::STATUS_POOR_QUALITY_INPUT);
+        const std::string pqi = cv::rcme::statusToString(cv::rcme::STATUS_POOR_QUALITY_INPUT);
         int count = 0;
         for (const Rejection& rej : runs[r]->rejections)
             count += rej.verdict != pqi;
         return std::to_string(count);
     });
-    row("gaps bridged with the previous motion", [&](size_t r) {
-        return std::to_string(runs[r]->bridgedGaps);
-    });
-    row("rotation error per pair, mean (deg)", [&](size_t r) {
-        return fixed(summaries[r].meanRotationDeg, 3);
-    });
-    row("rotation error per pair, median (deg)", [&](size_t r) {
-        return fixed(summaries[r].medianRotationDeg, 3);
-    });
-    row("translation direction error, median (deg)", [&](size_t r) {
-        return fixed(summaries[r].medianTranslationDeg, 2);
-    });
+    row("gaps bridged with the previous motion",
+        [&](size_t r) { return std::to_string(runs[r]->bridgedGaps); });
+    row("rotation error per pair, mean (deg)",
+        [&](size_t r) { return fixed(summaries[r].meanRotationDeg, 3); });
+    row("rotation error per pair, median (deg)",
+        [&](size_t r) { return fixed(summaries[r].medianRotationDeg, 3); });
+    row("translation direction error, median (deg)",
+        [&](size_t r) { return fixed(summaries[r].medianTranslationDeg, 2); });
     row("final position error (m, GT scale)", [&](size_t r) {
         return fixed(summaries[r].finalPositionError, 2) + " @ frame " +
                std::to_string(summaries[r].finalFrame);
     });
-    row("ATE RMSE over keyframes (m, GT scale)", [&](size_t r) {
-        return fixed(summaries[r].ateRmse, 2);
-    });
-    row("ground-truth path length (m)", [&](size_t r) {
-        return fixed(summaries[r].pathLength, 1);
-    });
-    row("estimator time per pair, median (ms)", [&](size_t r) {
-        return fixed(summaries[r].medianMilliseconds, 1);
-    });
+    row("ATE RMSE over keyframes (m, GT scale)",
+        [&](size_t r) { return fixed(summaries[r].ateRmse, 2); });
+    row("ground-truth path length (m)",
+        [&](size_t r) { return fixed(summaries[r].pathLength, 1); });
+    row("estimator time per pair, median (ms)",
+        [&](size_t r) { return fixed(summaries[r].medianMilliseconds, 1); });
     std::cout << "features: " << fixed(cache.featureMilliseconds(), 0)
               << " ms of SIFT for both runs\n";
 
@@ -848,7 +931,9 @@ int run(int argc, char** argv)
     }
     const cv::Mat picture = drawTrajectories(
         seq, runs, legend,
-        seq.name + ", top view; scale per pair from ground truth (display only)");
+        seq.name + ", frames 0-" + std::to_string(n - 1) +
+            ": monocular VO, each pair's translation scaled by the ground-truth distance (display "
+            "only)");
     std::cout << "wrote " << writePicture(opt.outPath, picture) << "\n";
 
     if (rcmeRun.pairs.empty()) {
@@ -857,7 +942,8 @@ int run(int argc, char** argv)
     }
     if (opt.maxMedianRotationErrorDeg >= 0 &&
         !(summaries[0].medianRotationDeg <= opt.maxMedianRotationErrorDeg)) {
-        std::cout << "FAILED: rcme's median rotation error " << fixed(summaries[0].medianRotationDeg, 3)
+        std::cout << "FAILED: rcme's median rotation error "
+                  << fixed(summaries[0].medianRotationDeg, 3)
                   << " deg exceeds --max-median-rotation-error-deg "
                   << opt.maxMedianRotationErrorDeg << "\n";
         return EXIT_NOT_SUCCESS;

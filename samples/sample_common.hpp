@@ -73,9 +73,12 @@ inline const char* methodNames()
 inline cv::rcme::Method parseMethod(const std::string& name)
 {
     static const std::vector<std::pair<std::string, cv::rcme::Method>> methods = {
-        {"rcme", cv::rcme::METHOD_RCME},           {"prcme", cv::rcme::METHOD_PRCME},
-        {"standard", cv::rcme::METHOD_STANDARD},   {"mlesac", cv::rcme::METHOD_MLESAC},
-        {"covransac", cv::rcme::METHOD_COV_RANSAC}, {"cov-ransac", cv::rcme::METHOD_COV_RANSAC},
+        {"rcme", cv::rcme::METHOD_RCME},
+        {"prcme", cv::rcme::METHOD_PRCME},
+        {"standard", cv::rcme::METHOD_STANDARD},
+        {"mlesac", cv::rcme::METHOD_MLESAC},
+        {"covransac", cv::rcme::METHOD_COV_RANSAC},
+        {"cov-ransac", cv::rcme::METHOD_COV_RANSAC},
         {"cov_ransac", cv::rcme::METHOD_COV_RANSAC}};
     for (const auto& m : methods)
         if (m.first == name)

@@ -92,10 +92,10 @@ struct Options
 {
     std::string method = "standard";
     std::string solver = "eight";
-    std::string opencvMethod; // empty: essential with a camera matrix, else fundamental
+    std::string opencvMethod;     // empty: essential with a camera matrix, else fundamental
     double opencvThreshold = 0.0; // <= 0: the same as rcme's
-    std::string kPath;  // empty: default, "none": uncalibrated
-    std::string gtPath; // empty: default, "none": no ground truth
+    std::string kPath;            // empty: default, "none": uncalibrated
+    std::string gtPath;           // empty: default, "none": no ground truth
     std::string dataDir = RCME_SAMPLES_DATA_DIR;
     std::string outPath = "rcme_two_view_demo.png";
     double sigma = 1.0;
@@ -110,8 +110,7 @@ Options parseArgs(int argc, char** argv)
 {
     const CommandLine cmd(argc, argv,
                           {"method", "solver", "opencv-method", "opencv-threshold", "k", "gt",
-                           "data", "out", "sigma", "threshold", "seed",
-                           "max-rotation-error-deg"});
+                           "data", "out", "sigma", "threshold", "seed", "max-rotation-error-deg"});
     Options opt;
     opt.help = cmd.help;
     opt.images = cmd.positional;
@@ -362,9 +361,8 @@ Estimate estimateWithRcme(const std::vector<cv::Point2f>& pts1,
     tm.start();
     if (!K.empty()) {
         est.name = "cv::rcme::recoverPose, method " + methodName;
-        est.inliers =
-            cv::rcme::recoverPose(pts1, pts2, K, E, est.R, est.t, params, est.mask, status,
-                                  covariance);
+        est.inliers = cv::rcme::recoverPose(pts1, pts2, K, E, est.R, est.t, params, est.mask,
+                                            status, covariance);
     } else {
         est.name = "cv::rcme::findFundamentalMat, method " + methodName;
         est.F = cv::rcme::findFundamentalMat(pts1, pts2, params, est.mask, status);
@@ -416,13 +414,12 @@ Estimate estimateWithOpencv(const std::vector<cv::Point2f>& pts1,
     if (method == "essential") {
         est.name = "OpenCV findEssentialMat RANSAC + recoverPose";
         if (pts1.size() >= 5)
-            E = cv::findEssentialMat(pts1, pts2, K, cv::RANSAC, confidence, threshold,
-                                     est.mask);
+            E = cv::findEssentialMat(pts1, pts2, K, cv::RANSAC, confidence, threshold, est.mask);
     } else {
         est.name = "OpenCV findFundamentalMat FM_RANSAC";
         if (pts1.size() >= 8)
-            est.F = cv::findFundamentalMat(pts1, pts2, cv::FM_RANSAC, threshold, confidence,
-                                           est.mask);
+            est.F =
+                cv::findFundamentalMat(pts1, pts2, cv::FM_RANSAC, threshold, confidence, est.mask);
         if (est.F.rows > 3)
             est.F = est.F.rowRange(0, 3).clone(); // the first of several solutions
         if (!est.F.empty() && !K.empty())
@@ -488,8 +485,7 @@ std::vector<std::string> bannerOf(const Estimate& est, size_t numMatches, double
     std::vector<std::string> header;
     header.push_back(est.name + ": " + est.outcome + ", " + std::to_string(est.inliers) + " / " +
                      std::to_string(numMatches) + " matches are inliers, " +
-                     fixed(est.milliseconds, 1) + " ms, threshold " + fixed(threshold, 2) +
-                     " px");
+                     fixed(est.milliseconds, 1) + " ms, threshold " + fixed(threshold, 2) + " px");
     if (est.rotationErrorDeg >= 0)
         header.push_back("error vs ground truth: rotation " + fixed(est.rotationErrorDeg, 2) +
                          " deg, translation direction " + fixed(est.translationErrorDeg, 2) +
@@ -546,8 +542,7 @@ int run(int argc, char** argv)
               << "\n"
               << "ground truth: " << (gtPath.empty() ? "none" : gtPath) << "\n"
               << "method: " << opt.method << ", solver: " << opt.solver
-              << ", sigma: " << params.sigma << " px, seed: " << params.randomGeneratorState
-              << "\n"
+              << ", sigma: " << params.sigma << " px, seed: " << params.randomGeneratorState << "\n"
               << "OpenCV: " << opencvMethod << ", threshold " << fixed(opencvThreshold, 2)
               << " px\n";
 
@@ -579,9 +574,9 @@ int run(int argc, char** argv)
     // Picture: one row per estimator, the same matches.
     std::vector<cv::Mat> rows;
     for (size_t k = 0; k < estimates.size(); ++k)
-        rows.push_back(drawMatches(img1, img2, pts1, pts2, estimates[k].mask, estimates[k].F,
-                                   bannerOf(estimates[k], pts1.size(),
-                                            k == 0 ? rcmeThreshold : opencvThreshold)));
+        rows.push_back(drawMatches(
+            img1, img2, pts1, pts2, estimates[k].mask, estimates[k].F,
+            bannerOf(estimates[k], pts1.size(), k == 0 ? rcmeThreshold : opencvThreshold)));
     cv::Mat canvas;
     cv::vconcat(rows, canvas);
     std::cout << "\nwrote " << writePicture(opt.outPath, canvas) << "\n";
