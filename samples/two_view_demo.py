@@ -5,9 +5,10 @@
 
 Detects SIFT features in two images, matches them (brute force, k = 2, Lowe's ratio test 0.8),
 estimates the relative motion with rcme.recoverPose (or only the fundamental matrix with
-rcme.findFundamentalMat when no camera matrix is given), compares it with the ground truth when
-one is given, and writes a side-by-side picture of the inlier and outlier matches with a few
-epipolar lines.
+rcme.findFundamentalMat when no camera matrix is given) and, on the same matches, with OpenCV's
+own estimator (cv2.findEssentialMat RANSAC + cv2.recoverPose, or cv2.findFundamentalMat
+FM_RANSAC), compares both with the ground truth when one is given, and writes a picture with one
+row per estimator: the inlier and outlier matches and a few epipolar lines.
 
 Without image arguments it runs on the bundled pair of samples/data (fountain-P11, see
 samples/data/PROVENANCE.md) with its camera matrix and ground-truth pose.
@@ -62,12 +63,18 @@ def parse_args(argv):
         description="Estimates the camera motion between two images with rcme (SIFT + ratio "
                     "test). Without images, runs on the bundled pair of samples/data with its "
                     "camera matrix and ground-truth pose.",
-        epilog="Exit codes: 0 success; 1 estimation not successful or rotation error too "
+        epilog="Exit codes (from rcme's result; OpenCV's is only shown): 0 success; 1 estimation not successful or rotation error too "
                "large; 2 usage or input/output error; 3 error raised by the library.")
     parser.add_argument("images", nargs="*", metavar="img", help="img1 img2 (default: bundled)")
     parser.add_argument("--method", default="standard",
-                        help="standard (default), rcme, prcme, mlesac, cov-ransac")
+                        help="rcme's method: %s (default standard)" % METHOD_NAMES)
     parser.add_argument("--solver", default="eight", help="eight (default), seven, five")
+    parser.add_argument("--opencv-method", choices=("essential", "fundamental", "none"),
+                        help="essential (findEssentialMat RANSAC + recoverPose; needs a camera "
+                             "matrix), fundamental (findFundamentalMat FM_RANSAC), or none. "
+                             "Default: essential with a camera matrix, else fundamental")
+    parser.add_argument("--opencv-threshold", type=float, default=0.0, metavar="T",
+                        help="OpenCV's inlier threshold in pixels (default: rcme's)")
     parser.add_argument("--k", dest="k_path", metavar="FILE",
                         help="3x3 camera matrix (9 numbers); 'none' estimates only F. Default: "
                              "the bundled K.txt without images, none with images")
@@ -82,9 +89,10 @@ def parse_args(argv):
                         help="noise sigma in pixels (Params.sigma, default 1)")
     parser.add_argument("--threshold", type=float, default=0.0,
                         help="inlier threshold in pixels (Params.threshold, default: from sigma)")
-    parser.add_argument("--seed", type=int, default=0, help="random generator state (default 0)")
+    parser.add_argument("--seed", type=int, default=0,
+                        help="random generator state of both estimators (default 0)")
     parser.add_argument("--max-rotation-error-deg", type=float, default=-1.0, metavar="X",
-                        help="exit with 1 when the rotation error w.r.t. the ground truth "
+                        help="exit with 1 when rcme's rotation error w.r.t. the ground truth "
                              "exceeds X degrees (needs a camera matrix and ground truth)")
     args = parser.parse_args(argv)
     if len(args.images) not in (0, 2):
@@ -92,17 +100,18 @@ def parse_args(argv):
     return args
 
 
+METHOD_NAMES = "rcme, prcme, standard, mlesac, covransac"
+
+
 def parse_method(rcme, name):
     methods = {
-        "standard": rcme.METHOD_STANDARD, "gold-standard": rcme.METHOD_STANDARD,
-        "rcme": rcme.METHOD_RCME, "prcme": rcme.METHOD_PRCME, "mlesac": rcme.METHOD_MLESAC,
+        "rcme": rcme.METHOD_RCME, "prcme": rcme.METHOD_PRCME, "standard": rcme.METHOD_STANDARD,
+        "mlesac": rcme.METHOD_MLESAC, "covransac": rcme.METHOD_COV_RANSAC,
         "cov-ransac": rcme.METHOD_COV_RANSAC, "cov_ransac": rcme.METHOD_COV_RANSAC,
-        "covransac": rcme.METHOD_COV_RANSAC,
     }
-    if name.lower() not in methods:
-        raise UsageError("unknown --method '%s' (standard, rcme, prcme, mlesac, cov-ransac)"
-                         % name)
-    return methods[name.lower()]
+    if name not in methods:
+        raise UsageError("unknown --method '%s' (%s)" % (name, METHOD_NAMES))
+    return methods[name]
 
 
 def parse_solver(rcme, name):
@@ -265,6 +274,123 @@ def draw_matches(img1, img2, pts1, pts2, mask, F, header):
     return canvas
 
 
+class Estimate:
+    """One estimator's result on the matches, as drawn in one row of the picture."""
+
+    def __init__(self, name):
+        self.name = name        # e.g. "rcme.recoverPose, method rcme"
+        self.success = False    # rcme: STATUS_SUCCESS; OpenCV: a model was returned
+        self.outcome = ""       # status text
+        self.F = self.R = self.t = self.mask = None
+        self.inliers = 0
+        self.milliseconds = 0.0
+        self.rotation_error = self.translation_error = None
+
+
+def estimate_with_rcme(rcme, pts1, pts2, K, params, method_name):
+    covariance = None
+    start = time.perf_counter()
+    if K is not None:
+        est = Estimate("rcme.recoverPose, method %s" % method_name)
+        est.inliers, E, est.R, est.t, est.mask, status, covariance = rcme.recoverPose(
+            pts1, pts2, K, params)
+    else:
+        est = Estimate("rcme.findFundamentalMat, method %s" % method_name)
+        est.F, est.mask, status = rcme.findFundamentalMat(pts1, pts2, params)
+        est.inliers = int(np.count_nonzero(est.mask)) if est.mask is not None else 0
+    est.milliseconds = 1000 * (time.perf_counter() - start)
+    est.success = status == rcme.STATUS_SUCCESS
+    est.outcome = rcme.statusToString(status)
+    if est.success and K is not None:
+        Kinv = np.linalg.inv(K)
+        est.F = Kinv.T @ E @ Kinv
+        est.F /= np.linalg.norm(est.F)
+
+    print("\n[%s]" % est.name)
+    print("status: %s" % est.outcome)
+    print("time: %.2f ms" % est.milliseconds)
+    if not est.success:
+        print("estimation failed: %s" % STATUS_EXPLANATIONS.get(status, "unknown status"))
+    elif covariance is not None and covariance.shape == (5, 5):
+        sd = np.degrees(np.sqrt(np.diag(covariance)))
+        print("std of the rotation increment (deg): %.4f %.4f %.4f, of the translation "
+              "direction (deg): %.4f %.4f" % tuple(sd))
+    return est
+
+
+def estimate_with_opencv(pts1, pts2, K, method, threshold, confidence, seed):
+    """OpenCV's estimator on the same matches: findEssentialMat (RANSAC) + recoverPose, or
+    findFundamentalMat (FM_RANSAC), whose F gives a motion through E = K^T F K when K is known."""
+    cv2.setRNGSeed(seed + 1)  # OpenCV's RANSAC draws from it
+    start = time.perf_counter()
+    E = None
+    if method == "essential":
+        est = Estimate("OpenCV findEssentialMat RANSAC + recoverPose")
+        if len(pts1) >= 5:
+            E, est.mask = cv2.findEssentialMat(pts1, pts2, K, cv2.RANSAC, confidence, threshold)
+    else:
+        est = Estimate("OpenCV findFundamentalMat FM_RANSAC")
+        if len(pts1) >= 8:
+            est.F, est.mask = cv2.findFundamentalMat(pts1, pts2, cv2.FM_RANSAC, threshold,
+                                                     confidence)
+        if est.F is not None and est.F.shape[0] > 3:
+            est.F = est.F[:3]  # the first of several solutions
+        if est.F is not None and K is not None:
+            E = K.T @ est.F @ K
+    if E is not None and E.shape[0] > 3:
+        E = E[:3]  # the first of several solutions
+    if E is not None and K is not None:
+        pose_inliers, est.R, est.t, pose_mask = cv2.recoverPose(E, pts1, pts2, K,
+                                                                mask=est.mask.copy())
+        if method == "essential":
+            est.inliers, est.mask = pose_inliers, pose_mask  # inliers passing cheirality
+            Kinv = np.linalg.inv(K)
+            est.F = Kinv.T @ E @ Kinv
+    est.milliseconds = 1000 * (time.perf_counter() - start)
+    if method == "fundamental":
+        est.inliers = int(np.count_nonzero(est.mask)) if est.mask is not None else 0
+    if est.F is not None:
+        est.F = est.F / np.linalg.norm(est.F)
+    est.success = est.F is not None
+    est.outcome = "model returned" if est.success else "no model returned"
+    print("\n[%s]" % est.name)
+    print("result: %s (OpenCV has no failure status)" % est.outcome)
+    print("time: %.2f ms" % est.milliseconds)
+    return est
+
+
+def report_estimate(rcme, est, num_matches, K, R_gt, t_gt):
+    """Prints an estimate's model and its errors against the ground truth (when both known)."""
+    if not est.success:
+        return
+    print("inliers: %d / %d%s" % (est.inliers, num_matches,
+                                  "" if est.R is None or "Fundamental" in est.name
+                                  else " (passing cheirality)"))
+    print("F = " + format_mat(est.F))
+    if est.R is not None:
+        print("R = " + format_mat(est.R))
+        print("t = " + format_mat(est.t.T) + "^T")
+    if est.R is not None and R_gt is not None:
+        err = rcme.compareMotion(est.R, est.t, R_gt, t_gt)
+        est.rotation_error, est.translation_error = err.rotationDeg, err.translationDeg
+        print("rotation error: %.3f deg" % est.rotation_error)
+        print("translation direction error: %.3f deg" % est.translation_error)
+    elif R_gt is not None and K is None:
+        print("ground truth given but no camera matrix: motion errors not computed")
+
+
+def banner_of(est, num_matches, threshold):
+    """The banner lines of an estimate's row in the picture."""
+    header = ["%s: %s, %d / %d matches are inliers, %.1f ms, threshold %.2f px"
+              % (est.name, est.outcome, est.inliers, num_matches, est.milliseconds, threshold)]
+    if est.rotation_error is not None:
+        header.append("error vs ground truth: rotation %.2f deg, translation direction %.2f deg"
+                      % (est.rotation_error, est.translation_error))
+    header.append("green: inliers, red: outliers (at most 150 lines each)"
+                  + ("" if est.F is None else ", colours: epipolar lines of 8 inliers"))
+    return header
+
+
 def run(argv):
     args = parse_args(argv)
     rcme, _, binding = load_rcme()
@@ -287,6 +413,8 @@ def run(argv):
     params.sigma = args.sigma
     params.threshold = args.threshold
     params.randomGeneratorState = args.seed
+    # rcme's inlier threshold: Params.threshold, or 1.96 sigma (chi2 with 1 DoF at 0.95)
+    rcme_threshold = args.threshold if args.threshold > 0 else 1.959964 * args.sigma
 
     img1, img2 = read_image(path1), read_image(path2)
     K = read_camera_matrix(k_path) if k_path else None
@@ -294,6 +422,10 @@ def run(argv):
     if args.max_rotation_error_deg >= 0 and (K is None or R_gt is None):
         raise UsageError("--max-rotation-error-deg needs a camera matrix (--k) and a ground "
                          "truth (--gt)")
+    opencv_method = args.opencv_method or ("fundamental" if K is None else "essential")
+    if opencv_method == "essential" and K is None:
+        raise UsageError("--opencv-method essential needs a camera matrix (--k)")
+    opencv_threshold = args.opencv_threshold if args.opencv_threshold > 0 else rcme_threshold
 
     print("binding: %s" % binding)
     print("image 1: %s (%dx%d)" % (path1, img1.shape[1], img1.shape[0]))
@@ -302,62 +434,26 @@ def run(argv):
     print("ground truth: %s" % (gt_path or "none"))
     print("method: %s, solver: %s, sigma: %g px, seed: %d"
           % (args.method, args.solver, params.sigma, params.randomGeneratorState))
+    print("OpenCV: %s, threshold %.2f px" % (opencv_method, opencv_threshold))
 
     start = time.perf_counter()
     n_kp1, n_kp2, pts1, pts2 = match_sift(img1, img2)
     print("keypoints: %d / %d, matches after ratio test: %d (%.1f ms)"
           % (n_kp1, n_kp2, len(pts1), 1000 * (time.perf_counter() - start)))
 
-    # robust estimation
-    start = time.perf_counter()
-    R = t = covariance = None
-    if K is not None:
-        inliers, E, R, t, mask, status, covariance = rcme.recoverPose(pts1, pts2, K, params)
-        F = None
-        if status == rcme.STATUS_SUCCESS:
-            Kinv = np.linalg.inv(K)
-            F = Kinv.T @ E @ Kinv
-            F /= np.linalg.norm(F)
-    else:
-        F, mask, status = rcme.findFundamentalMat(pts1, pts2, params)
-        inliers = int(np.count_nonzero(mask)) if mask is not None else 0
-    elapsed_ms = 1000 * (time.perf_counter() - start)
+    # robust estimation: rcme, then OpenCV on the same matches
+    estimates = [estimate_with_rcme(rcme, pts1, pts2, K, params, args.method)]
+    report_estimate(rcme, estimates[-1], len(pts1), K, R_gt, t_gt)
+    if opencv_method != "none":
+        estimates.append(estimate_with_opencv(pts1, pts2, K, opencv_method, opencv_threshold,
+                                              params.confidence, args.seed))
+        report_estimate(rcme, estimates[-1], len(pts1), K, R_gt, t_gt)
 
-    status_name = rcme.statusToString(status)
-    print("status: %s" % status_name)
-    print("time: %.2f ms" % elapsed_ms)
-    if status == rcme.STATUS_SUCCESS:
-        print("inliers: %d / %d%s" % (inliers, len(pts1),
-                                      "" if K is None else " (passing cheirality)"))
-        print("F = " + format_mat(F))
-        if K is not None:
-            print("R = " + format_mat(R))
-            print("t = " + format_mat(t.T) + "^T")
-        if covariance is not None and covariance.shape == (5, 5):
-            sd = np.degrees(np.sqrt(np.diag(covariance)))
-            print("std of the rotation increment (deg): %.4f %.4f %.4f, of the translation "
-                  "direction (deg): %.4f %.4f" % tuple(sd))
-    else:
-        print("estimation failed: %s" % STATUS_EXPLANATIONS.get(status, "unknown status"))
-
-    rotation_error = translation_error = None
-    if status == rcme.STATUS_SUCCESS and R is not None and R_gt is not None:
-        err = rcme.compareMotion(R, t, R_gt, t_gt)
-        rotation_error, translation_error = err.rotationDeg, err.translationDeg
-        print("rotation error: %.3f deg" % rotation_error)
-        print("translation direction error: %.3f deg" % translation_error)
-    elif R_gt is not None and K is None:
-        print("ground truth given but no camera matrix: motion errors not computed")
-
-    # picture
-    header = ["rcme, method %s: %s, %d / %d matches are inliers, %.1f ms"
-              % (args.method, status_name, inliers, len(pts1), elapsed_ms)]
-    if rotation_error is not None:
-        header.append("error vs ground truth: rotation %.2f deg, translation direction %.2f deg"
-                      % (rotation_error, translation_error))
-    header.append("green: inliers, red: outliers (at most 150 lines each)"
-                  + ("" if F is None else ", colours: epipolar lines of 8 inliers"))
-    canvas = draw_matches(img1, img2, pts1, pts2, mask, F, header)
+    # picture: one row per estimator, the same matches
+    rows = [draw_matches(img1, img2, pts1, pts2, est.mask, est.F,
+                         banner_of(est, len(pts1), rcme_threshold if k == 0 else opencv_threshold))
+            for k, est in enumerate(estimates)]
+    canvas = np.vstack(rows)
     out_path = os.path.abspath(args.out)
     os.makedirs(os.path.dirname(out_path), exist_ok=True)
     try:
@@ -366,13 +462,17 @@ def run(argv):
         raise UsageError("cannot write '%s': %s" % (out_path, e))
     if not written:
         raise UsageError("cannot write '%s'" % out_path)
-    print("wrote %s" % out_path)
+    print("\nwrote %s" % out_path)
 
-    if status != rcme.STATUS_SUCCESS:
+    rcme_estimate = estimates[0]
+    if not rcme_estimate.success:
         return EXIT_NOT_SUCCESS
-    if args.max_rotation_error_deg >= 0 and not rotation_error <= args.max_rotation_error_deg:
-        print("FAILED: rotation error %.3f deg exceeds --max-rotation-error-deg %g"
-              % (rotation_error, args.max_rotation_error_deg))
+    if args.max_rotation_error_deg >= 0 and not (
+            rcme_estimate.rotation_error is not None
+            and rcme_estimate.rotation_error <= args.max_rotation_error_deg):
+        print("FAILED: rotation error %s deg exceeds --max-rotation-error-deg %g"
+              % ("n/a" if rcme_estimate.rotation_error is None
+                 else "%.3f" % rcme_estimate.rotation_error, args.max_rotation_error_deg))
         return EXIT_NOT_SUCCESS
     return EXIT_OK
 
