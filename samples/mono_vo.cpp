@@ -90,7 +90,8 @@ void printUsage(const char* argv0)
         << "  --method M          " << methodNames() << " (default rcme)\n"
         << "  --solver S          eight (default), seven, five\n"
         << "  --sigma S           rcme's noise sigma in pixels (default 1)\n"
-        << "  --seed N            random generator state of both estimators (default 0)\n"
+        << "  --seed N            rcme's random generator state (default 0; OpenCV's RANSAC has\n"
+        << "                      a fixed internal seed)\n"
         << "  --min-parallax PX   median displacement that makes a keyframe pair (default 30)\n"
         << "  --max-reselect N    later frames tried after a rejected pair (default 5)\n"
         << "  --min-matches N     fewer matches end the keyframe search (default 60)\n"
@@ -439,12 +440,11 @@ PairEstimator rcmeEstimator(const cv::rcme::Params& params)
     };
 }
 
-PairEstimator opencvEstimator(double threshold, double prob, int seed)
+PairEstimator opencvEstimator(double threshold, double prob)
 {
-    return [threshold, prob, seed](const Matches& m, const cv::Matx33d& K) {
+    return [threshold, prob](const Matches& m, const cv::Matx33d& K) {
         PairEstimate est;
         cv::Mat mask, R, t;
-        cv::theRNG().state = static_cast<uint64>(seed) + 1; // OpenCV's RANSAC draws from it
         cv::TickMeter tm;
         tm.start();
         const cv::Mat E = cv::findEssentialMat(m.points1, m.points2, cv::Mat(K), cv::RANSAC, prob,
@@ -864,9 +864,8 @@ int run(int argc, char** argv)
     std::unique_ptr<VoRun> opencvRun;
     if (opt.runOpencv) {
         std::cout << "run 2: OpenCV\n";
-        opencvRun = std::make_unique<VoRun>(
-            runOdometry(seq, cache, opt, "OpenCV",
-                        opencvEstimator(opt.opencvThreshold, opt.opencvProb, opt.seed)));
+        opencvRun = std::make_unique<VoRun>(runOdometry(
+            seq, cache, opt, "OpenCV", opencvEstimator(opt.opencvThreshold, opt.opencvProb)));
         runs.push_back(opencvRun.get());
     }
 

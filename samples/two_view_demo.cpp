@@ -77,7 +77,8 @@ void printUsage(const char* argv0)
         << "  --sigma S       noise sigma in pixels (Params::sigma, default 1)\n"
         << "  --threshold T   inlier threshold in pixels (Params::threshold, default: from "
            "sigma)\n"
-        << "  --seed N        random generator state of both estimators (default 0)\n"
+        << "  --seed N        rcme's random generator state (default 0; OpenCV's RANSAC has a\n"
+        << "                  fixed internal seed)\n"
         << "  --max-rotation-error-deg X\n"
         << "                  exit with 1 when rcme's rotation error w.r.t. the ground truth\n"
         << "                  exceeds X degrees (needs a camera matrix and ground truth)\n"
@@ -403,11 +404,9 @@ Estimate estimateWithRcme(const std::vector<cv::Point2f>& pts1,
 findFundamentalMat (FM_RANSAC), whose F gives a motion through E = K^T F K when K is known. */
 Estimate estimateWithOpencv(const std::vector<cv::Point2f>& pts1,
                             const std::vector<cv::Point2f>& pts2, const cv::Mat& K,
-                            const std::string& method, double threshold, double confidence,
-                            int seed)
+                            const std::string& method, double threshold, double confidence)
 {
     Estimate est;
-    cv::theRNG().state = static_cast<uint64>(seed) + 1; // OpenCV's RANSAC draws from it
     cv::TickMeter tm;
     tm.start();
     cv::Mat E;
@@ -566,8 +565,8 @@ int run(int argc, char** argv)
     estimates.push_back(estimateWithRcme(pts1, pts2, K, params, opt.method));
     reportEstimate(estimates.back(), pts1.size(), K, Rgt, tgt);
     if (opencvMethod != "none") {
-        estimates.push_back(estimateWithOpencv(pts1, pts2, K, opencvMethod, opencvThreshold,
-                                               params.confidence, opt.seed));
+        estimates.push_back(
+            estimateWithOpencv(pts1, pts2, K, opencvMethod, opencvThreshold, params.confidence));
         reportEstimate(estimates.back(), pts1.size(), K, Rgt, tgt);
     }
 

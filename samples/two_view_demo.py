@@ -90,7 +90,8 @@ def parse_args(argv):
     parser.add_argument("--threshold", type=float, default=0.0,
                         help="inlier threshold in pixels (Params.threshold, default: from sigma)")
     parser.add_argument("--seed", type=int, default=0,
-                        help="random generator state of both estimators (default 0)")
+                        help="rcme's random generator state (default 0; OpenCV's RANSAC has a "
+                             "fixed internal seed)")
     parser.add_argument("--max-rotation-error-deg", type=float, default=-1.0, metavar="X",
                         help="exit with 1 when rcme's rotation error w.r.t. the ground truth "
                              "exceeds X degrees (needs a camera matrix and ground truth)")
@@ -318,10 +319,9 @@ def estimate_with_rcme(rcme, pts1, pts2, K, params, method_name):
     return est
 
 
-def estimate_with_opencv(pts1, pts2, K, method, threshold, confidence, seed):
+def estimate_with_opencv(pts1, pts2, K, method, threshold, confidence):
     """OpenCV's estimator on the same matches: findEssentialMat (RANSAC) + recoverPose, or
     findFundamentalMat (FM_RANSAC), whose F gives a motion through E = K^T F K when K is known."""
-    cv2.setRNGSeed(seed + 1)  # OpenCV's RANSAC draws from it
     start = time.perf_counter()
     E = None
     if method == "essential":
@@ -446,7 +446,7 @@ def run(argv):
     report_estimate(rcme, estimates[-1], len(pts1), K, R_gt, t_gt)
     if opencv_method != "none":
         estimates.append(estimate_with_opencv(pts1, pts2, K, opencv_method, opencv_threshold,
-                                              params.confidence, args.seed))
+                                              params.confidence))
         report_estimate(rcme, estimates[-1], len(pts1), K, R_gt, t_gt)
 
     # picture: one row per estimator, the same matches
