@@ -223,7 +223,8 @@ inline std::string writePicture(const std::string& path, const cv::Mat& picture)
         std::filesystem::create_directories(outPath.parent_path(), ec);
     bool written = false;
     try {
-        written = cv::imwrite(outPath.string(), picture);
+        // the smallest PNG (the VO pictures are committed to doc/samples/)
+        written = cv::imwrite(outPath.string(), picture, {cv::IMWRITE_PNG_COMPRESSION, 9});
     } catch (const cv::Exception& e) {
         throw UsageError("cannot write '" + outPath.string() + "': " + e.what());
     }
