@@ -916,7 +916,7 @@ int run(int argc, char** argv)
     row("estimator time per pair, median (ms)",
         [&](size_t r) { return fixed(summaries[r].medianMilliseconds, 1); });
     std::cout << "features: " << fixed(cache.featureMilliseconds(), 0)
-              << " ms of SIFT for both runs\n";
+              << " ms of SIFT, computed once for all runs\n";
 
     std::vector<std::string> legend;
     for (size_t r = 0; r < runs.size(); ++r) {

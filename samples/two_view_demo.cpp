@@ -347,6 +347,7 @@ struct Estimate
     std::string outcome;  //!< status text
     cv::Mat F, R, t, mask;
     int inliers = 0;
+    bool inliersPassCheirality = false; //!< the mask is recoverPose's
     double milliseconds = 0;
     double rotationErrorDeg = -1, translationErrorDeg = -1;
 };
@@ -362,6 +363,7 @@ Estimate estimateWithRcme(const std::vector<cv::Point2f>& pts1,
     tm.start();
     if (!K.empty()) {
         est.name = "cv::rcme::recoverPose, method " + methodName;
+        est.inliersPassCheirality = true;
         est.inliers = cv::rcme::recoverPose(pts1, pts2, K, E, est.R, est.t, params, est.mask,
                                             status, covariance);
     } else {
@@ -431,6 +433,7 @@ Estimate estimateWithOpencv(const std::vector<cv::Point2f>& pts1,
         est.inliers = cv::recoverPose(E, pts1, pts2, K, est.R, est.t, poseMask);
         if (method == "essential") {
             est.mask = poseMask; // as cv::recoverPose leaves it: inliers passing cheirality
+            est.inliersPassCheirality = true;
             const cv::Mat Kinv = K.inv();
             est.F = Kinv.t() * E * Kinv;
         }
@@ -458,10 +461,7 @@ void reportEstimate(Estimate& est, size_t numMatches, const cv::Mat& K, const cv
     if (!est.success)
         return;
     std::cout << "inliers: " << est.inliers << " / " << numMatches
-              << (est.R.empty() || est.name.find("Fundamental") != std::string::npos
-                      ? ""
-                      : " (passing cheirality)")
-              << "\n"
+              << (est.inliersPassCheirality ? " (passing cheirality)" : "") << "\n"
               << "F = " << formatMat(est.F) << "\n";
     if (!est.R.empty())
         std::cout << "R = " << formatMat(est.R) << "\n"

@@ -284,6 +284,7 @@ class Estimate:
         self.outcome = ""       # status text
         self.F = self.R = self.t = self.mask = None
         self.inliers = 0
+        self.inliers_pass_cheirality = False  # the mask is recoverPose's
         self.milliseconds = 0.0
         self.rotation_error = self.translation_error = None
 
@@ -293,6 +294,7 @@ def estimate_with_rcme(rcme, pts1, pts2, K, params, method_name):
     start = time.perf_counter()
     if K is not None:
         est = Estimate("rcme.recoverPose, method %s" % method_name)
+        est.inliers_pass_cheirality = True
         est.inliers, E, est.R, est.t, est.mask, status, covariance = rcme.recoverPose(
             pts1, pts2, K, params)
     else:
@@ -344,6 +346,7 @@ def estimate_with_opencv(pts1, pts2, K, method, threshold, confidence):
                                                                 mask=est.mask.copy())
         if method == "essential":
             est.inliers, est.mask = pose_inliers, pose_mask  # inliers passing cheirality
+            est.inliers_pass_cheirality = True
             Kinv = np.linalg.inv(K)
             est.F = Kinv.T @ E @ Kinv
     est.milliseconds = 1000 * (time.perf_counter() - start)
@@ -364,8 +367,8 @@ def report_estimate(rcme, est, num_matches, K, R_gt, t_gt):
     if not est.success:
         return
     print("inliers: %d / %d%s" % (est.inliers, num_matches,
-                                  "" if est.R is None or "Fundamental" in est.name
-                                  else " (passing cheirality)"))
+                                  " (passing cheirality)" if est.inliers_pass_cheirality
+                                  else ""))
     print("F = " + format_mat(est.F))
     if est.R is not None:
         print("R = " + format_mat(est.R))
