@@ -56,6 +56,7 @@ folder); 3 error raised by the library.
 #include <iostream>
 #include <map>
 #include <memory>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -409,6 +410,8 @@ struct PairEstimate
 {
     bool accepted = false;
     std::string verdict; //!< why a pair was not accepted
+    //! rcme's status when rcme rejected the pair (OpenCV has none)
+    std::optional<cv::rcme::Status> status;
     cv::Matx33d R;
     cv::Vec3d t;
     int inliers = 0;
@@ -435,6 +438,7 @@ PairEstimator rcmeEstimator(const cv::rcme::Params& params)
             est.t = cv::Vec3d(t);
         } else {
             est.verdict = cv::rcme::statusToString(status);
+            est.status = status;
         }
         return est;
     };
@@ -480,6 +484,7 @@ struct Rejection
 {
     int first, second;
     std::string verdict;
+    std::optional<cv::rcme::Status> status;
 };
 
 struct VoRun
@@ -549,7 +554,7 @@ VoRun runOdometry(const Sequence& seq, FeatureCache& cache, const Options& opt,
             const PairEstimate est = estimate(pm.matches, seq.K);
             run.milliseconds.push_back(est.milliseconds);
             if (!est.accepted) {
-                run.rejections.push_back({keyframe, candidate, est.verdict});
+                run.rejections.push_back({keyframe, candidate, est.verdict, est.status});
                 std::cout << "  " << label << ": keyframe pair " << keyframe << " -> " << candidate
                           << " rejected (" << est.verdict << ", " << numMatches
                           << " matches), re-selecting\n";
@@ -817,12 +822,17 @@ cv::Mat drawTrajectories(const Sequence& seq, const std::vector<const VoRun*>& r
     return canvas;
 }
 
-std::string countsByVerdict(const VoRun& run, const std::string& verdict)
+//! Re-selections after rcme reported `status`; with no status, the re-selections for any other
+//! reason (OpenCV without an essential matrix, too few points...).
+int countRejections(const VoRun& run, std::optional<cv::rcme::Status> status)
 {
     int count = 0;
-    for (const Rejection& r : run.rejections)
-        count += r.verdict == verdict;
-    return std::to_string(count);
+    for (const Rejection& r : run.rejections) {
+        const bool isTracked = r.status == cv::rcme::STATUS_POOR_QUALITY_INPUT ||
+                               r.status == cv::rcme::STATUS_DEGENERATE_CONFIGURATION;
+        count += status ? r.status == status : !isTracked;
+    }
+    return count;
 }
 
 int run(int argc, char** argv)
@@ -885,18 +895,16 @@ int run(int argc, char** argv)
     row("keyframes", [&](size_t r) { return std::to_string(runs[r]->keyframes.size()); });
     row("keyframe pairs estimated",
         [&](size_t r) { return std::to_string(runs[r]->pairs.size()); });
-    row("PQI re-selections", [&](size_t r) {
-        return r == 0 ? countsByVerdict(
-                            *runs[r], cv::rcme::statusToString(cv::rcme::STATUS_POOR_QUALITY_INPUT))
-                      : std::string("- (no failure signal)");
+    const int pqiCount = countRejections(rcmeRun, cv::rcme::STATUS_POOR_QUALITY_INPUT);
+    const int degenerateCount = countRejections(rcmeRun, cv::rcme::STATUS_DEGENERATE_CONFIGURATION);
+    row("re-selected after PQI", [&](size_t r) {
+        return r == 0 ? std::to_string(pqiCount) : std::string("- (no failure signal)");
     });
-    row("other re-selections (degenerate, no E, ...)", [&](size_t r) {
-        const std::string pqi = cv::rcme::statusToString(cv::rcme::STATUS_POOR_QUALITY_INPUT);
-        int count = 0;
-        for (const Rejection& rej : runs[r]->rejections)
-            count += rej.verdict != pqi;
-        return std::to_string(count);
+    row("re-selected after degenerate", [&](size_t r) {
+        return r == 0 ? std::to_string(degenerateCount) : std::string("- (no failure signal)");
     });
+    row("other re-selections (no E, ...)",
+        [&](size_t r) { return std::to_string(countRejections(*runs[r], std::nullopt)); });
     row("gaps bridged with the previous motion",
         [&](size_t r) { return std::to_string(runs[r]->bridgedGaps); });
     row("rotation error per pair, mean (deg)",
@@ -915,6 +923,8 @@ int run(int argc, char** argv)
         [&](size_t r) { return fixed(summaries[r].pathLength, 1); });
     row("estimator time per pair, median (ms)",
         [&](size_t r) { return fixed(summaries[r].medianMilliseconds, 1); });
+    std::cout << rcmeLabel << " re-selected after PQI: " << pqiCount
+              << ", after degenerate: " << degenerateCount << "\n";
     std::cout << "features: " << fixed(cache.featureMilliseconds(), 0)
               << " ms of SIFT, computed once for all runs\n";
 
@@ -924,7 +934,8 @@ int run(int argc, char** argv)
                                    : std::string("OpenCV findEssentialMat RANSAC + recoverPose")) +
                            ": " + std::to_string(runs[r]->keyframes.size()) + " keyframes, ";
         if (r == 0)
-            text += std::to_string(runs[r]->rejections.size()) + " re-selections, ";
+            text += "re-selected after PQI " + std::to_string(pqiCount) + ", after degenerate " +
+                    std::to_string(degenerateCount) + ", ";
         text += "final error " + fixed(summaries[r].finalPositionError, 2) + " m";
         legend.push_back(text);
     }
