@@ -1,20 +1,27 @@
 # Checks used by the CTest tests of samples/CMakeLists.txt (run with cmake -P).
 #   -DMODE=png -DFILE=<png>: FILE exists and starts with the PNG signature.
+#   -DMODE=jpeg -DFILE=<jpg>: FILE exists and starts with the JPEG signature.
 #   -DMODE=missing -DDEMO=<demo> -DFILE=<path>: the demo given the missing image FILE exits with 2
 #   and names FILE in its message.
 #   -DMODE=missing_data -DDEMO=<mono_vo> -DFILE=<folder>: mono_vo given the missing data folder
 #   FILE exits with 2 and names FILE in its message.
 #   -DMODE=run -DDEMO=<sample> -DARGS=<a;b;...> -DEXPECT=<regex>: the sample run with ARGS exits
 #   with 0 and its output matches every regex of the list EXPECT.
-if(MODE STREQUAL "png")
+if(MODE STREQUAL "png" OR MODE STREQUAL "jpeg")
   if(NOT EXISTS "${FILE}")
     message(FATAL_ERROR "the demo did not write ${FILE}")
   endif()
-  file(READ "${FILE}" signature LIMIT 8 HEX)
-  if(NOT signature STREQUAL "89504e470d0a1a0a")
-    message(FATAL_ERROR "${FILE} is not a PNG file (signature ${signature})")
+  if(MODE STREQUAL "png")
+    file(READ "${FILE}" signature LIMIT 8 HEX)
+    set(expected "89504e470d0a1a0a")
+  else()
+    file(READ "${FILE}" signature LIMIT 3 HEX)
+    set(expected "ffd8ff")
   endif()
-  message(STATUS "${FILE} is a PNG file")
+  if(NOT signature STREQUAL expected)
+    message(FATAL_ERROR "${FILE} is not a ${MODE} file (signature ${signature})")
+  endif()
+  message(STATUS "${FILE} is a ${MODE} file")
 elseif(MODE STREQUAL "missing" OR MODE STREQUAL "missing_data")
   file(REMOVE "${FILE}")
   if(MODE STREQUAL "missing")

@@ -223,8 +223,9 @@ inline std::string writePicture(const std::string& path, const cv::Mat& picture)
         std::filesystem::create_directories(outPath.parent_path(), ec);
     bool written = false;
     try {
-        // the smallest PNG (the VO pictures are committed to doc/samples/)
-        written = cv::imwrite(outPath.string(), picture, {cv::IMWRITE_PNG_COMPRESSION, 9});
+        // the smallest PNG, or a JPEG of moderate quality (pictures are committed to doc/samples/)
+        written = cv::imwrite(outPath.string(), picture,
+                              {cv::IMWRITE_PNG_COMPRESSION, 9, cv::IMWRITE_JPEG_QUALITY, 80});
     } catch (const cv::Exception& e) {
         throw UsageError("cannot write '" + outPath.string() + "': " + e.what());
     }

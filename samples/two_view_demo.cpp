@@ -73,7 +73,10 @@ void printUsage(const char* argv0)
         << "                  to skip. Default: the bundled pose_gt.txt without images.\n"
         << "  --data DIR      directory of the bundled pair (default " << RCME_SAMPLES_DATA_DIR
         << ")\n"
-        << "  --out FILE      output PNG (default rcme_two_view_demo.png)\n"
+        << "  --out FILE      output picture, PNG (default rcme_two_view_demo.png) or, by\n"
+        << "                  its extension, JPEG\n"
+        << "  --picture-width W\n"
+        << "                  scale the picture to W pixels wide (default 0: natural size)\n"
         << "  --sigma S       noise sigma in pixels (Params::sigma, default 1)\n"
         << "  --threshold T   inlier threshold in pixels (Params::threshold, default: from "
            "sigma)\n"
@@ -103,6 +106,7 @@ struct Options
     double threshold = 0.0;
     int seed = 0;
     double maxRotationErrorDeg = -1.0;
+    int pictureWidth = 0; // 0: natural size
     std::vector<std::string> images;
     bool help = false;
 };
@@ -111,7 +115,8 @@ Options parseArgs(int argc, char** argv)
 {
     const CommandLine cmd(argc, argv,
                           {"method", "solver", "opencv-method", "opencv-threshold", "k", "gt",
-                           "data", "out", "sigma", "threshold", "seed", "max-rotation-error-deg"});
+                           "data", "out", "sigma", "threshold", "seed", "max-rotation-error-deg",
+                           "picture-width"});
     Options opt;
     opt.help = cmd.help;
     opt.images = cmd.positional;
@@ -140,12 +145,16 @@ Options parseArgs(int argc, char** argv)
             opt.seed = parseInt(key, value);
         else if (key == "max-rotation-error-deg")
             opt.maxRotationErrorDeg = parseDouble(key, value);
+        else if (key == "picture-width")
+            opt.pictureWidth = parseInt(key, value);
     }
     if (!opt.images.empty() && opt.images.size() != 2)
         throw UsageError("expected two images (img1 img2) or none, got " +
                          std::to_string(opt.images.size()));
     if (opt.outPath.empty())
         throw UsageError("--out needs a file name");
+    if (opt.pictureWidth < 0)
+        throw UsageError("--picture-width must be >= 0");
     if (!opt.opencvMethod.empty() && opt.opencvMethod != "essential" &&
         opt.opencvMethod != "fundamental" && opt.opencvMethod != "none")
         throw UsageError("unknown --opencv-method '" + opt.opencvMethod +
@@ -578,6 +587,11 @@ int run(int argc, char** argv)
             bannerOf(estimates[k], pts1.size(), k == 0 ? rcmeThreshold : opencvThreshold)));
     cv::Mat canvas;
     cv::vconcat(rows, canvas);
+    if (opt.pictureWidth > 0) // e.g. the smaller copy in doc/samples/
+        cv::resize(canvas, canvas,
+                   cv::Size(opt.pictureWidth, cvRound(static_cast<double>(canvas.rows) *
+                                                      opt.pictureWidth / canvas.cols)),
+                   0, 0, cv::INTER_AREA);
     std::cout << "\nwrote " << writePicture(opt.outPath, canvas) << "\n";
 
     const Estimate& rcmeEstimate = estimates.front();

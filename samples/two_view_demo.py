@@ -84,7 +84,10 @@ def parse_args(argv):
     parser.add_argument("--data", default=DATA_DIR, metavar="DIR",
                         help="directory of the bundled pair (default %(default)s)")
     parser.add_argument("--out", default="rcme_two_view_demo_py.png", metavar="FILE",
-                        help="output PNG (default %(default)s)")
+                        help="output picture, PNG (default %(default)s) or, by its extension, "
+                             "JPEG")
+    parser.add_argument("--picture-width", type=int, default=0, metavar="W",
+                        help="scale the picture to W pixels wide (default 0: natural size)")
     parser.add_argument("--sigma", type=float, default=1.0,
                         help="noise sigma in pixels (Params.sigma, default 1)")
     parser.add_argument("--threshold", type=float, default=0.0,
@@ -96,6 +99,8 @@ def parse_args(argv):
                         help="exit with 1 when rcme's rotation error w.r.t. the ground truth "
                              "exceeds X degrees (needs a camera matrix and ground truth)")
     args = parser.parse_args(argv)
+    if args.picture_width < 0:
+        raise UsageError("--picture-width must be >= 0")
     if len(args.images) not in (0, 2):
         raise UsageError("give two images or none (got %d)" % len(args.images))
     return args
@@ -457,10 +462,15 @@ def run(argv):
                          banner_of(est, len(pts1), rcme_threshold if k == 0 else opencv_threshold))
             for k, est in enumerate(estimates)]
     canvas = np.vstack(rows)
+    if args.picture_width > 0:  # e.g. the smaller copy in doc/samples/
+        height = int(round(canvas.shape[0] * args.picture_width / canvas.shape[1]))
+        canvas = cv2.resize(canvas, (args.picture_width, height), interpolation=cv2.INTER_AREA)
     out_path = os.path.abspath(args.out)
     os.makedirs(os.path.dirname(out_path), exist_ok=True)
     try:
-        written = cv2.imwrite(out_path, canvas)
+        # the smallest PNG, or a JPEG of moderate quality, as the C++ demo
+        written = cv2.imwrite(out_path, canvas,
+                              [cv2.IMWRITE_PNG_COMPRESSION, 9, cv2.IMWRITE_JPEG_QUALITY, 80])
     except cv2.error as e:
         raise UsageError("cannot write '%s': %s" % (out_path, e))
     if not written:
