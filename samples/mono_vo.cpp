@@ -700,13 +700,16 @@ cv::Mat drawTopView(const Sequence& seq, const std::vector<const VoRun*>& runs, 
     auto at = [&](const Pose& T) { return toPixel(T(0, 3), T(2, 3)); };
 
     const double step = gridStep(span, 6), half = 0.5 * size / scale;
-    for (double x = std::ceil((centerX - half) / step) * step; x <= centerX + half; x += step) {
+    // integer multiples of the step: no drift, and no "-0" label
+    for (int k = cvCeil((centerX - half) / step); k * step <= centerX + half; ++k) {
+        const double x = k * step;
         const int px = toPixel(x, centerZ).x;
         cv::line(panel, cv::Point(px, 0), cv::Point(px, size), cv::Scalar::all(225));
         putLabel(panel, fixed(x, step < 1 ? 1 : 0), cv::Point(px + 2, size - 6), 0.35,
                  cv::Scalar::all(120));
     }
-    for (double z = std::ceil((centerZ - half) / step) * step; z <= centerZ + half; z += step) {
+    for (int k = cvCeil((centerZ - half) / step); k * step <= centerZ + half; ++k) {
+        const double z = k * step;
         const int py = toPixel(centerX, z).y;
         cv::line(panel, cv::Point(0, py), cv::Point(size, py), cv::Scalar::all(225));
         putLabel(panel, fixed(z, step < 1 ? 1 : 0), cv::Point(4, py - 3), 0.35,
