@@ -19,7 +19,8 @@ motion of the pair is estimated.
 --bad-frames simulates frames whose matches are all wrong (a glare, motion blur, a duplicated or
 dropped frame): every match of a pair that involves such a frame is re-paired at random. On the
 clean KITTI frames rcme never reports PQI (doc/results.md); with bad frames it does, and
-re-selects, while OpenCV accepts the wrong motion.
+re-selects, while OpenCV accepts the wrong motion. The degenerate status (Params::degeneracyTest,
+--no-degeneracy-test turns it off) fires on some highway pairs of KITTI 01.
 
 If no candidate of the window can be accepted (or the matches run out), the track is bridged:
 the first keyframe moves to the last tried frame with the previous accepted rotation and
@@ -101,6 +102,8 @@ void printUsage(const char* argv0)
         << "                      simulating unusable frames (default: none)\n"
         << "  --opencv-threshold PX  findEssentialMat's threshold (default 1, OpenCV's default)\n"
         << "  --opencv-prob P     findEssentialMat's confidence (default 0.999)\n"
+        << "  --no-degeneracy-test  accept pairs that a homography explains as well as F\n"
+        << "                      (Params::degeneracyTest off)\n"
         << "  --no-opencv         skip the OpenCV run\n"
         << "  --out FILE          output PNG (default rcme_mono_vo.png)\n"
         << "  --max-median-rotation-error-deg X\n"
@@ -130,6 +133,7 @@ struct Options
     double opencvThreshold = 1.0;
     double opencvProb = 0.999;
     bool runOpencv = true;
+    bool degeneracyTest = true;
     std::string outPath = "rcme_mono_vo.png";
     double maxMedianRotationErrorDeg = -1.0;
     bool verbose = false;
@@ -143,7 +147,7 @@ Options parseArgs(int argc, char** argv)
                            "min-parallax", "max-reselect", "min-matches", "features",
                            "opencv-threshold", "opencv-prob", "out", "bad-frames",
                            "max-median-rotation-error-deg"},
-                          {"no-opencv", "verbose", "v"});
+                          {"no-opencv", "no-degeneracy-test", "verbose", "v"});
     Options opt;
     opt.help = cmd.help;
     if (!cmd.positional.empty())
@@ -183,6 +187,8 @@ Options parseArgs(int argc, char** argv)
                     opt.badFrames.push_back(parseInt(key, item));
         } else if (key == "no-opencv")
             opt.runOpencv = false;
+        else if (key == "no-degeneracy-test")
+            opt.degeneracyTest = false;
         else if (key == "out")
             opt.outPath = value;
         else if (key == "max-median-rotation-error-deg")
@@ -850,6 +856,7 @@ int run(int argc, char** argv)
     params.solver = parseSolver(opt.solver);
     params.sigma = opt.sigma;
     params.randomGeneratorState = opt.seed;
+    params.degeneracyTest = opt.degeneracyTest;
 
     const Sequence seq = readSequence(opt);
     const int n = static_cast<int>(seq.images.size());
@@ -860,8 +867,9 @@ int run(int argc, char** argv)
               << " per frame) + ratio test 0.8, median parallax >= " << fixed(opt.minParallax, 1)
               << " px, up to " << opt.maxReselect << " re-selections per keyframe\n"
               << "rcme: method " << opt.method << ", solver " << opt.solver << ", sigma "
-              << opt.sigma << " px; OpenCV: findEssentialMat RANSAC (threshold "
-              << opt.opencvThreshold << " px, prob " << opt.opencvProb << ") + recoverPose\n"
+              << opt.sigma << " px, degeneracy test " << (opt.degeneracyTest ? "on" : "off")
+              << "; OpenCV: findEssentialMat RANSAC (threshold " << opt.opencvThreshold
+              << " px, prob " << opt.opencvProb << ") + recoverPose\n"
               << (opt.badFrames.empty() ? std::string()
                                         : "simulated unusable frames (matches re-paired at "
                                           "random): " +

@@ -241,8 +241,10 @@ const char* statusExplanation(cv::rcme::Status status)
     case cv::rcme::STATUS_NOT_ENOUGH_POINTS:
         return "fewer valid correspondences than the minimal solver needs";
     case cv::rcme::STATUS_DEGENERATE_CONFIGURATION:
-        return "the samples or the selected model were degenerate (identical or collinear "
-               "points, pure rotation, or a motion that cheirality cannot resolve)";
+        return "the configuration does not determine the motion: a homography explains the "
+               "inliers as well as F (planar scene, pure rotation or too little parallax), the "
+               "samples were degenerate (identical or collinear points), or cheirality cannot "
+               "resolve the motion";
     }
     return "unknown status";
 }

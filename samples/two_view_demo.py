@@ -204,8 +204,9 @@ STATUS_EXPLANATIONS = {
     1: "no hypothesis passed the method's acceptance tests: the matches are too poor to trust "
        "any motion computed from them",
     2: "fewer valid correspondences than the minimal solver needs",
-    3: "the samples or the selected model were degenerate (identical or collinear points, pure "
-       "rotation, or a motion that cheirality cannot resolve)",
+    3: "the configuration does not determine the motion: a homography explains the inliers as "
+       "well as F (planar scene, pure rotation or too little parallax), the samples were "
+       "degenerate (identical or collinear points), or cheirality cannot resolve the motion",
 }
 
 
