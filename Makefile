@@ -14,7 +14,7 @@ INTREE ?= 1
 .PHONY: demo test test-intree build configure deps
 
 demo: build
-	$(BUILD_DIR)/bin/rcme_two_view_demo --out $(BUILD_DIR)/demo/two_view_demo.png
+	$(BUILD_DIR)/bin/rcme_two_view_demo --method rcme --out $(BUILD_DIR)/demo/two_view_demo.png
 
 test: build
 	cd $(BUILD_DIR) && ctest --output-on-failure -j$(JOBS)
