@@ -79,9 +79,10 @@ void printUsage(const char* argv0)
         << "Usage: " << argv0 << " [options]\n"
         << "\n"
         << "Monocular visual odometry over a KITTI sequence: keyframe pairs estimated with\n"
-        << "cv::rcme (re-selecting the keyframe when rcme reports poor quality input), then the\n"
-        << "same run with OpenCV's findEssentialMat + recoverPose. Writes the top view of both\n"
-        << "trajectories against the ground truth as a PNG.\n"
+        << "cv::rcme (re-selecting the keyframe when rcme reports poor quality input or a\n"
+        << "degenerate configuration), then the same run with OpenCV's findEssentialMat +\n"
+        << "recoverPose. Writes the top view of both trajectories against the ground truth as\n"
+        << "a PNG.\n"
         << "\n"
         << "Options (--key value or --key=value):\n"
         << "  --data DIR          folder of the sequences (default " << RCME_DEFAULT_DATA_DIR
