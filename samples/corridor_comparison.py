@@ -12,21 +12,17 @@ other (an empty F from OpenCV); the means are over the successes.
     PYTHONPATH=build/python /usr/bin/python3 samples/corridor_comparison.py --seeds 200
 """
 import argparse
+import os
+import sys
 import time
 
 import numpy as np
 import cv2
 
-try:
-    import rcme
-except ImportError:  # built inside OpenCV
-    rcme = cv2.rcme
-
-
-def motion_from_f(F, K, p1, p2):
-    E = K.T @ F @ K
-    _, R, t, _ = cv2.recoverPose(E, p1, p2, K)
-    return R, t
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "benchmark"))
+from methods import (OPENCV_CONFIDENCE, Budget, motion_from_f, rcme,  # noqa: E402
+                     rcme_params)
+from corridor import scene_params  # noqa: E402
 
 
 def summarize(name, errors, failures, seconds, points, seeds):
@@ -51,7 +47,7 @@ def main():
     ap.add_argument("--iterations", type=int, default=1000)
     args = ap.parse_args()
 
-    threshold = 1.959963984540054 * args.sigma
+    threshold = Budget(args.iterations, args.sigma, 0).threshold
     calibrated = {"rcme Standard, recoverPose": rcme.METHOD_STANDARD,
                   "rcme RCME, recoverPose": rcme.METHOD_RCME,
                   "rcme pRCME, recoverPose": rcme.METHOD_PRCME,
@@ -72,18 +68,9 @@ def main():
         errors.append((m.dq, m.dt, m.rotationDeg, m.translationDeg))
 
     for seed in range(args.seeds):
-        sp = rcme.SceneParams()
-        sp.kind = rcme.SCENE_CORRIDOR
-        sp.numPoints, sp.inlierRatio, sp.sigma, sp.seed = (args.points, args.inlier_ratio,
-                                                           args.sigma, seed)
-        s = rcme.generateScene(sp)
+        s = rcme.generateScene(scene_params(args.points, args.inlier_ratio, args.sigma, seed))
         K, p1, p2 = s.cameraMatrix, s.points1, s.points2
-        params = rcme.Params()
-        params.method = rcme.METHOD_STANDARD
-        params.sigma = args.sigma
-        params.maxIterations = args.iterations
-        params.exactIterations = True
-        params.randomGeneratorState = seed
+        params = rcme_params(rcme.METHOD_STANDARD, Budget(args.iterations, args.sigma, seed))
 
         start = time.perf_counter()
         F, _, status = rcme.findFundamentalMat(p1, p2, params)
@@ -105,7 +92,7 @@ def main():
         # confidence ~1 keeps OpenCV's adaptive bound at maxIters: exactly N iterations too.
         cv2.setRNGSeed(seed)
         start = time.perf_counter()
-        F, _ = cv2.findFundamentalMat(p1, p2, cv2.FM_RANSAC, threshold, 1.0 - 1e-12,
+        F, _ = cv2.findFundamentalMat(p1, p2, cv2.FM_RANSAC, threshold, OPENCV_CONFIDENCE,
                                       args.iterations)
         seconds = time.perf_counter() - start
         ok = F is not None and F.shape == (3, 3)

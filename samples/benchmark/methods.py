@@ -1,0 +1,155 @@
+"""The compared estimators behind one call signature, so every method sees the same
+correspondences, the same pixel threshold, the same iteration budget N and the same seed.
+
+run(method, p1, p2, K, budget) -> Estimate with F (pixels), R and t (x2 = R x1 + t, |t| = 1,
+only with K), the inlier mask, whether a model came out, and the wall time of the call."""
+import time
+from dataclasses import dataclass
+
+import numpy as np
+import cv2
+
+try:
+    import rcme
+except ImportError:  # built inside OpenCV
+    rcme = cv2.rcme
+
+CHI2_1_95 = 3.841458820694124  # chi2_1^-1(0.95): threshold = sigma * sqrt(.) = 1.96 sigma
+# Confidence ~1 keeps OpenCV's adaptive iteration bound at maxIters.
+OPENCV_CONFIDENCE = 1.0 - 1e-12
+
+
+@dataclass
+class Budget:
+    iterations: int
+    sigma: float
+    seed: int
+
+    @property
+    def threshold(self):
+        return self.sigma * np.sqrt(CHI2_1_95)
+
+
+@dataclass
+class Estimate:
+    ok: bool
+    status: str
+    F: object = None
+    R: object = None
+    t: object = None
+    mask: object = None
+    seconds: float = 0.0
+
+
+def rcme_params(method, budget):
+    params = rcme.Params()
+    params.method = method
+    params.sigma = budget.sigma
+    params.threshold = budget.threshold
+    params.maxIterations = budget.iterations
+    params.exactIterations = True
+    params.randomGeneratorState = budget.seed
+    return params
+
+
+def motion_from_essential(E, K, p1, p2, mask=None):
+    """cv2.recoverPose on the given inliers (all points without a mask): R, t or None."""
+    if mask is not None:
+        keep = mask.ravel() > 0
+        p1, p2 = p1[keep], p2[keep]
+    if len(p1) < 5:
+        return None, None
+    _, R, t, _ = cv2.recoverPose(E, p1, p2, K)
+    return R, t
+
+
+def motion_from_f(F, K, p1, p2, mask=None):
+    """E = K^T F K, then cv2.recoverPose: how an uncalibrated F becomes a motion."""
+    return motion_from_essential(K.T @ F @ K, K, p1, p2, mask)
+
+
+def _normalized(F):
+    return F / np.linalg.norm(F)
+
+
+def _run_rcme(method):
+    def run(p1, p2, K, budget):
+        params = rcme_params(method, budget)
+        start = time.perf_counter()
+        report = rcme.estimateRelativeMotion(p1, p2, K if K is not None else np.zeros((0, 0)),
+                                             params)
+        seconds = time.perf_counter() - start
+        ok = report.status == rcme.STATUS_SUCCESS
+        estimate = Estimate(ok, "ok" if ok else rcme.statusToString(report.status),
+                            mask=np.asarray(report.mask).ravel().astype(bool), seconds=seconds)
+        if ok:
+            estimate.F = _normalized(np.asarray(report.F))
+            if K is not None:
+                estimate.R, estimate.t = np.asarray(report.R), np.asarray(report.t).reshape(3, 1)
+        return estimate
+    return run
+
+
+def _run_opencv_f(flag):
+    def run(p1, p2, K, budget):
+        cv2.setRNGSeed(budget.seed)
+        start = time.perf_counter()
+        F, mask = cv2.findFundamentalMat(p1, p2, flag, budget.threshold, OPENCV_CONFIDENCE,
+                                         budget.iterations)
+        R = t = None
+        ok = F is not None and F.shape == (3, 3) and mask is not None
+        if ok and K is not None:
+            R, t = motion_from_f(F, K, p1, p2, mask)
+            ok = R is not None
+        seconds = time.perf_counter() - start
+        if not ok:
+            return Estimate(False, "no model", mask=np.zeros(len(p1), bool), seconds=seconds)
+        return Estimate(True, "ok", _normalized(F), R, t, mask.ravel() > 0, seconds)
+    return run
+
+
+def _run_opencv_e(flag):
+    def run(p1, p2, K, budget):
+        if K is None:
+            return None  # needs a camera matrix
+        cv2.setRNGSeed(budget.seed)
+        start = time.perf_counter()
+        E, mask = cv2.findEssentialMat(p1, p2, K, flag, OPENCV_CONFIDENCE, budget.threshold,
+                                       budget.iterations)
+        ok = E is not None and E.shape == (3, 3) and mask is not None
+        R = t = None
+        if ok:
+            # recoverPose keeps the essential mask's inliers that pass cheirality
+            _, R, t, _ = cv2.recoverPose(E, p1, p2, K, mask=mask.copy())
+        seconds = time.perf_counter() - start
+        if not ok:
+            return Estimate(False, "no model", mask=np.zeros(len(p1), bool), seconds=seconds)
+        Kinv = np.linalg.inv(K)
+        return Estimate(True, "ok", _normalized(Kinv.T @ E @ Kinv), R, t, mask.ravel() > 0,
+                        seconds)
+    return run
+
+
+# name -> (runner, can it be held to exactly N hypotheses)
+METHODS = {
+    "RCME": (_run_rcme(rcme.METHOD_RCME), True),
+    "pRCME": (_run_rcme(rcme.METHOD_PRCME), True),
+    "Standard": (_run_rcme(rcme.METHOD_STANDARD), True),
+    "MLESAC": (_run_rcme(rcme.METHOD_MLESAC), True),
+    "Cov-RANSAC": (_run_rcme(rcme.METHOD_COV_RANSAC), True),
+    "cv FM_RANSAC": (_run_opencv_f(cv2.FM_RANSAC), True),
+    "cv FM_LMEDS": (_run_opencv_f(cv2.FM_LMEDS), False),
+    "cv USAC_DEFAULT": (_run_opencv_f(cv2.USAC_DEFAULT), False),
+    "cv USAC_MAGSAC": (_run_opencv_f(cv2.USAC_MAGSAC), False),
+    "cv USAC_ACCURATE": (_run_opencv_f(cv2.USAC_ACCURATE), False),
+    "cv E RANSAC": (_run_opencv_e(cv2.RANSAC), True),
+    "cv E USAC_MAGSAC": (_run_opencv_e(cv2.USAC_MAGSAC), False),
+}
+RCME_METHODS = ["RCME", "pRCME", "Standard", "MLESAC", "Cov-RANSAC"]
+OPENCV_METHODS = [m for m in METHODS if m.startswith("cv ")]
+
+
+def run(name, p1, p2, K, budget):
+    """One call of the named method; None when it does not apply (E methods without K)."""
+    return METHODS[name][0](np.ascontiguousarray(p1, np.float64),
+                            np.ascontiguousarray(p2, np.float64), K, budget)

@@ -1,0 +1,154 @@
+"""Tables (markdown) and plots of the benchmark rows."""
+import os
+
+import numpy as np
+
+import metrics
+import plots
+
+
+def _pct(count, total):
+    return "n/a" if total == 0 else "%.1f" % (100.0 * count / total)
+
+
+def _median(values, fmt="%.2f"):
+    values = [v for v in values if v is not None and np.isfinite(v)]
+    return fmt % np.median(values) if values else "n/a"
+
+
+def summarize(rows):
+    """Aggregates of the rows of one method on one dataset (and N)."""
+    ok = [r for r in rows if r["ok"]]
+    has_gt = any("gt_fail" in r for r in rows)
+    return {
+        "runs": len(rows),
+        "pqi": _pct(len(rows) - len(ok), len(rows)),
+        "paper_fail": _pct(sum(r["paper_fail"] for r in ok), len(rows)),
+        "gt_fail": _pct(sum(r.get("gt_fail", False) for r in ok), len(rows)) if has_gt
+        else "n/a",
+        "rot": _median([r.get("rot") for r in ok]),
+        "trans": _median([r.get("trans") for r in ok]),
+        "f_err": _median([r.get("f_err") for r in ok]),
+        "precision": _median([r.get("precision") for r in ok], "%.3f"),
+        "recall": _median([r.get("recall") for r in ok], "%.3f"),
+        "ms": _median([1000.0 * r["seconds"] for r in rows]),
+        "dq": _mean_std([r.get("dq") for r in ok]),
+        "dt": _mean_std([r.get("dt") for r in ok]),
+    }
+
+
+def _mean_std(values):
+    values = [v for v in values if v is not None]
+    return "%.3f (%.3f)" % (np.mean(values), np.std(values)) if values else "n/a"
+
+
+def _select(rows, **keys):
+    return [r for r in rows if all(r[k] == v for k, v in keys.items())]
+
+
+def _table(header, lines):
+    out = ["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
+    out += ["| " + " | ".join(str(c) for c in line) + " |" for line in lines]
+    return "\n".join(out) + "\n"
+
+
+def synthetic_tables(rows, method_names):
+    out = []
+    for dataset in sorted({r["dataset"] for r in rows}):
+        for N in sorted({r["N"] for r in rows}):
+            subset = _select(rows, dataset=dataset, N=N)
+            if not subset:
+                continue
+            scenes = len({r["pair"] for r in subset})
+            out.append("**%s, N = %d, %d scenes**\n" % (dataset, N, scenes))
+            lines = []
+            for method in method_names:
+                s = summarize(_select(subset, method=method))
+                if s["runs"]:
+                    lines.append([method, s["dq"], s["dt"], s["rot"], s["trans"], s["pqi"],
+                                  s["gt_fail"], s["precision"], s["recall"], s["ms"]])
+            out.append(_table(["method", "dq mean (std)", "dt mean (std)", "median rot. deg",
+                               "median transl. deg", "PQI %", "GT failure %",
+                               "inlier precision", "inlier recall", "median ms"], lines))
+    return "\n".join(out)
+
+
+def table_two(rows, method_names, datasets, N):
+    """Table II style: a row per dataset, a PQI / paper-failure / GT-failure cell per method."""
+    lines = []
+    for dataset in datasets + ["all"]:
+        subset = _select(rows, N=N) if dataset == "all" else _select(rows, N=N, dataset=dataset)
+        pairs = len({r["pair"] for r in subset})
+        line = ["%s (#%d)" % (dataset, pairs)]
+        for method in method_names:
+            s = summarize(_select(subset, method=method))
+            line.append("%s / %s / %s" % (s["pqi"], s["paper_fail"], s["gt_fail"])
+                        if s["runs"] else "n/a")
+        lines.append(line)
+    return _table(["dataset (#pairs)"] + method_names, lines)
+
+
+def detail_table(rows, method_names, dataset, N):
+    lines = []
+    subset = _select(rows, N=N, dataset=dataset)
+    for method in method_names:
+        s = summarize(_select(subset, method=method))
+        if s["runs"]:
+            lines.append([method, s["runs"], s["pqi"], s["paper_fail"], s["gt_fail"], s["rot"],
+                          s["trans"], s["f_err"], s["precision"], s["recall"], s["ms"]])
+    return _table(["method", "runs", "PQI %", "failure % (paper)", "GT failure %",
+                   "median rot. deg", "median transl. deg", "median F err. px",
+                   "inlier precision", "inlier recall", "median ms"], lines)
+
+
+def write_plots(rows, method_names, datasets, out_dir, N):
+    """cumulative_rotation.png (real pairs with a pose) and rates.png (GT failure and PQI per
+    dataset), both at the largest N. Returns the file names."""
+    subset = _select(rows, N=N)
+    errors = {}
+    for method in method_names:
+        mine = [r for r in _select(subset, method=method) if r["dataset"] in datasets]
+        pose_rows = [r for r in mine if "rot" in r or not r["ok"]]
+        pose_rows = [r for r in pose_rows if r["dataset"] in _pose_datasets(subset)]
+        if pose_rows:
+            errors[method] = [r.get("rot", np.inf) for r in pose_rows]
+    names = []
+    if errors:
+        plots.cumulative_curves(os.path.join(out_dir, "cumulative_rotation.png"),
+                                "Rotation error on the real pairs with ground truth, N = %d "
+                                "(no model = infinite error)" % N, errors,
+                                x_label="rotation error, degrees")
+        names.append("cumulative_rotation.png")
+    for key, file_name, label in [("gt_fail", "gt_failure_rates.png", "GT failure %"),
+                                  ("pqi", "pqi_rates.png", "PQI / no model %"),
+                                  ("paper_fail", "paper_failure_rates.png",
+                                   "failure % (paper metric)")]:
+        values = []
+        for dataset in datasets:
+            line = []
+            for method in method_names:
+                s = summarize(_select(subset, dataset=dataset, method=method))
+                value = s[key] if s["runs"] else "n/a"
+                line.append(float(value) if value != "n/a" else np.nan)
+            values.append(line)
+        plots.grouped_bars(os.path.join(out_dir, file_name), "%s per dataset, N = %d" % (
+            label, N), datasets, method_names, values, label)
+        names.append(file_name)
+    return names
+
+
+def _pose_datasets(rows):
+    return {r["dataset"] for r in rows if "rot" in r}
+
+
+THRESHOLDS_TEXT = (
+    "Failure (paper, Sec. V-C.1): n_I = points of the method's inlier set whose Huber-robust "
+    "Sampson error is below tau^2 = sigma^2 chi2_2^-1(0.95) (tau = %.2f px at sigma 1) under "
+    "the method's output; n_I* = the same after a Huber-robust Gold Standard MLE started from "
+    "it (over R, t when K is known, over a rank-2 F otherwise); failure when n_I*/n_I <= %.1f. "
+    "GT failure: rotation error > %.0f deg or translation direction error > %.0f deg (pairs with "
+    "a pose), or median Sampson error of the true matches under the estimated F > %.0f px "
+    "(F-only pairs). Both failure rates and PQI are %% of all runs; a run with PQI / no model "
+    "is not a failure (as the paper's Table II)." % (
+        np.sqrt(metrics.CHI2_2_95), metrics.PAPER_KAPPA, metrics.ROTATION_FAILURE_DEG,
+        metrics.TRANSLATION_FAILURE_DEG, metrics.F_FAILURE_PX))
