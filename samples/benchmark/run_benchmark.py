@@ -151,7 +151,7 @@ def write_report(args, rows_synthetic, rows_real, selection_notes, elapsed, comm
         "- Date: %s; wall time %.0f s" % (
             datetime.datetime.utcnow().strftime("%Y-%m-%d %H:%M UTC"), elapsed),
         "- Machine: %s" % machine_description(),
-        "- rcme module: `%s`" % methods.rcme.__file__,
+        "- rcme module: `%s`" % os.path.relpath(methods.rcme.__file__, REPO_ROOT),
         "- Noise sigma %.2f px; inlier threshold %.2f px for every method (rcme: Sampson "
         "distance; OpenCV: its own distance, Sampson or distance to the epipolar line); "
         "N in %s; %d seed(s) per real pair, %d corridor scenes per setting." % (
