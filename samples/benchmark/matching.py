@@ -1,7 +1,7 @@
 """SIFT correspondences with Lowe's ratio test, cached on disk so that reruns are fast.
 
-The cache key is a hash of the two image paths, their sizes and modification times, and the
-matching parameters; the points are stored in the images' original pixel coordinates even when
+The cache key is a hash of the two images' contents and the matching parameters (not their
+modification times: a re-copied data folder keeps its cache); the points are stored in the images' original pixel coordinates even when
 the images are downscaled for detection."""
 import hashlib
 import json
@@ -10,7 +10,7 @@ import os
 import numpy as np
 import cv2
 
-MATCHING_VERSION = 1  # bump when the matching changes, so that old cache entries are not reused
+MATCHING_VERSION = 2  # bump when the matching changes, so that old cache entries are not reused
 
 
 def default_cache_dir(repo_root):
@@ -24,12 +24,18 @@ class Matcher:
         self.max_side = max_side
         self.max_features = max_features
         self._features = {}
+        self._digests = {}
         os.makedirs(cache_dir, exist_ok=True)
 
+    def _digest(self, path):
+        if path not in self._digests:
+            with open(path, "rb") as f:
+                self._digests[path] = hashlib.sha1(f.read()).hexdigest()
+        return self._digests[path]
+
     def _key(self, path1, path2, max_side):
-        stats = [(os.path.abspath(p), os.path.getsize(p), int(os.path.getmtime(p)))
-                 for p in (path1, path2)]
-        text = json.dumps([stats, self.ratio, max_side, self.max_features, MATCHING_VERSION])
+        digests = [self._digest(p) for p in (path1, path2)]
+        text = json.dumps([digests, self.ratio, max_side, self.max_features, MATCHING_VERSION])
         return hashlib.sha1(text.encode()).hexdigest()
 
     def _detect(self, path, max_side):

@@ -30,10 +30,18 @@ class Budget:
         return self.sigma * np.sqrt(CHI2_1_95)
 
 
+# Estimate.status of a run without a model: rcme declined (PQI), rcme found the inliers
+# degenerate (a homography explains them about as well as F), or no model for another reason
+# (OpenCV returned none, too few points).
+PQI, DEGENERATE, NO_MODEL = "PQI", "degenerate", "no model"
+RCME_OUTCOMES = {int(rcme.STATUS_POOR_QUALITY_INPUT): PQI,
+                 int(rcme.STATUS_DEGENERATE_CONFIGURATION): DEGENERATE}
+
+
 @dataclass
 class Estimate:
     ok: bool
-    status: str
+    status: str  # "ok", PQI, DEGENERATE or NO_MODEL
     F: object = None
     R: object = None
     t: object = None
@@ -80,7 +88,7 @@ def _run_rcme(method):
                                              params)
         seconds = time.perf_counter() - start
         ok = report.status == rcme.STATUS_SUCCESS
-        estimate = Estimate(ok, "ok" if ok else rcme.statusToString(report.status),
+        estimate = Estimate(ok, "ok" if ok else RCME_OUTCOMES.get(int(report.status), NO_MODEL),
                             mask=np.asarray(report.mask).ravel().astype(bool), seconds=seconds)
         if ok:
             estimate.F = _normalized(np.asarray(report.F))
@@ -103,7 +111,7 @@ def _run_opencv_f(flag):
             ok = R is not None
         seconds = time.perf_counter() - start
         if not ok:
-            return Estimate(False, "no model", mask=np.zeros(len(p1), bool), seconds=seconds)
+            return Estimate(False, NO_MODEL, mask=np.zeros(len(p1), bool), seconds=seconds)
         return Estimate(True, "ok", _normalized(F), R, t, mask.ravel() > 0, seconds)
     return run
 
@@ -123,20 +131,32 @@ def _run_opencv_e(flag):
             _, R, t, _ = cv2.recoverPose(E, p1, p2, K, mask=mask.copy())
         seconds = time.perf_counter() - start
         if not ok:
-            return Estimate(False, "no model", mask=np.zeros(len(p1), bool), seconds=seconds)
+            return Estimate(False, NO_MODEL, mask=np.zeros(len(p1), bool), seconds=seconds)
         Kinv = np.linalg.inv(K)
         return Estimate(True, "ok", _normalized(Kinv.T @ E @ Kinv), R, t, mask.ravel() > 0,
                         seconds)
     return run
 
 
+# Display names of rcme's methods in the paper's spelling; a method the module gains later is
+# still benchmarked, under its constant's name (METHOD_FOO_BAR -> "FOO_BAR").
+RCME_DISPLAY_NAMES = {"METHOD_RCME": "RCME", "METHOD_PRCME": "pRCME",
+                      "METHOD_STANDARD": "Standard", "METHOD_MLESAC": "MLESAC",
+                      "METHOD_COV_RANSAC": "Cov-RANSAC"}
+
+
+def rcme_methods(module=rcme):
+    """Every METHOD_* constant of the rcme module, as (display name, value), in the order of
+    their values: the benchmark covers whatever the library offers."""
+    constants = sorted((int(getattr(module, name)), name) for name in dir(module)
+                       if name.startswith("METHOD_"))
+    return [(RCME_DISPLAY_NAMES.get(name, name[len("METHOD_"):]), value)
+            for value, name in constants]
+
+
 # name -> (runner, can it be held to exactly N hypotheses)
-METHODS = {
-    "RCME": (_run_rcme(rcme.METHOD_RCME), True),
-    "pRCME": (_run_rcme(rcme.METHOD_PRCME), True),
-    "Standard": (_run_rcme(rcme.METHOD_STANDARD), True),
-    "MLESAC": (_run_rcme(rcme.METHOD_MLESAC), True),
-    "Cov-RANSAC": (_run_rcme(rcme.METHOD_COV_RANSAC), True),
+METHODS = {name: (_run_rcme(value), True) for name, value in rcme_methods()}
+METHODS.update({
     "cv FM_RANSAC": (_run_opencv_f(cv2.FM_RANSAC), True),
     "cv FM_LMEDS": (_run_opencv_f(cv2.FM_LMEDS), False),
     "cv USAC_DEFAULT": (_run_opencv_f(cv2.USAC_DEFAULT), False),
@@ -144,8 +164,7 @@ METHODS = {
     "cv USAC_ACCURATE": (_run_opencv_f(cv2.USAC_ACCURATE), False),
     "cv E RANSAC": (_run_opencv_e(cv2.RANSAC), True),
     "cv E USAC_MAGSAC": (_run_opencv_e(cv2.USAC_MAGSAC), False),
-}
-RCME_METHODS = ["RCME", "pRCME", "Standard", "MLESAC", "Cov-RANSAC"]
+})
 OPENCV_METHODS = [m for m in METHODS if m.startswith("cv ")]
 
 

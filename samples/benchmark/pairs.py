@@ -27,6 +27,7 @@ class Pair:
     labels: object = None      # true-inlier mask (bool) when labels exist
     gt_points: object = None   # true correspondences [x1 y1 x2 y2] to score F-only pairs
     note: str = ""
+    sigma: object = None       # noise of the pair when known (corridor), else the run's sigma
 
 
 def _line_distances_squared(F, p1, p2):

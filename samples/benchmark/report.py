@@ -5,6 +5,7 @@ import numpy as np
 
 import metrics
 import plots
+from methods import DEGENERATE, PQI
 
 
 def _pct(count, total):
@@ -22,7 +23,10 @@ def summarize(rows):
     has_gt = any("gt_fail" in r for r in rows)
     return {
         "runs": len(rows),
-        "pqi": _pct(len(rows) - len(ok), len(rows)),
+        "pqi": _pct(sum(r["status"] == PQI for r in rows), len(rows)),
+        "degenerate": _pct(sum(r["status"] == DEGENERATE for r in rows), len(rows)),
+        "no_model": _pct(sum(r["status"] not in ("ok", PQI, DEGENERATE) for r in rows),
+                         len(rows)),
         "paper_fail": _pct(sum(r["paper_fail"] for r in ok), len(rows)),
         "gt_fail": _pct(sum(r.get("gt_fail", False) for r in ok), len(rows)) if has_gt
         else "n/a",
@@ -66,15 +70,18 @@ def synthetic_tables(rows, method_names):
                 s = summarize(_select(subset, method=method))
                 if s["runs"]:
                     lines.append([method, s["dq"], s["dt"], s["rot"], s["trans"], s["pqi"],
-                                  s["gt_fail"], s["precision"], s["recall"], s["ms"]])
+                                  s["degenerate"], s["no_model"], s["gt_fail"],
+                                  s["precision"], s["recall"], s["ms"]])
             out.append(_table(["method", "dq mean (std)", "dt mean (std)", "median rot. deg",
-                               "median transl. deg", "PQI %", "GT failure %",
-                               "inlier precision", "inlier recall", "median ms"], lines))
+                               "median transl. deg", "PQI %", "degenerate %", "no model %",
+                               "GT failure %", "inlier precision", "inlier recall",
+                               "median ms"], lines))
     return "\n".join(out)
 
 
 def table_two(rows, method_names, datasets, N):
-    """Table II style: a row per dataset, a PQI / paper-failure / GT-failure cell per method."""
+    """Table II style: a row per dataset, a PQI / degenerate / paper-failure / GT-failure cell
+    per method (PQI counting every run without a model that is not degenerate)."""
     lines = []
     for dataset in datasets + ["all"]:
         subset = _select(rows, N=N) if dataset == "all" else _select(rows, N=N, dataset=dataset)
@@ -82,8 +89,10 @@ def table_two(rows, method_names, datasets, N):
         line = ["%s (#%d)" % (dataset, pairs)]
         for method in method_names:
             s = summarize(_select(subset, method=method))
-            line.append("%s / %s / %s" % (s["pqi"], s["paper_fail"], s["gt_fail"])
-                        if s["runs"] else "n/a")
+            declined = _pct(sum(r["status"] not in ("ok", DEGENERATE)
+                                for r in _select(subset, method=method)), s["runs"])
+            line.append("%s / %s / %s / %s" % (declined, s["degenerate"], s["paper_fail"],
+                                               s["gt_fail"]) if s["runs"] else "n/a")
         lines.append(line)
     return _table(["dataset (#pairs)"] + method_names, lines)
 
@@ -94,16 +103,18 @@ def detail_table(rows, method_names, dataset, N):
     for method in method_names:
         s = summarize(_select(subset, method=method))
         if s["runs"]:
-            lines.append([method, s["runs"], s["pqi"], s["paper_fail"], s["gt_fail"], s["rot"],
-                          s["trans"], s["f_err"], s["precision"], s["recall"], s["ms"]])
-    return _table(["method", "runs", "PQI %", "failure % (paper)", "GT failure %",
+            lines.append([method, s["runs"], s["pqi"], s["degenerate"], s["no_model"],
+                          s["paper_fail"], s["gt_fail"], s["rot"], s["trans"], s["f_err"],
+                          s["precision"], s["recall"], s["ms"]])
+    return _table(["method", "runs", "PQI %", "degenerate %", "no model %", "failure % (paper)",
+                   "GT failure %",
                    "median rot. deg", "median transl. deg", "median F err. px",
                    "inlier precision", "inlier recall", "median ms"], lines)
 
 
 def write_plots(rows, method_names, datasets, out_dir, N):
-    """cumulative_rotation.png (real pairs with a pose) and rates.png (GT failure and PQI per
-    dataset), both at the largest N. Returns the file names."""
+    """cumulative_rotation.png (real pairs with a pose) and a bar chart per rate (GT failure,
+    PQI, degenerate, paper failure) per dataset, all at the largest N. Returns the file names."""
     subset = _select(rows, N=N)
     errors = {}
     for method in method_names:
@@ -120,7 +131,8 @@ def write_plots(rows, method_names, datasets, out_dir, N):
                                 x_label="rotation error, degrees")
         names.append("cumulative_rotation.png")
     for key, file_name, label in [("gt_fail", "gt_failure_rates.png", "GT failure %"),
-                                  ("pqi", "pqi_rates.png", "PQI / no model %"),
+                                  ("pqi", "pqi_rates.png", "PQI %"),
+                                  ("degenerate", "degenerate_rates.png", "degenerate %"),
                                   ("paper_fail", "paper_failure_rates.png",
                                    "failure % (paper metric)")]:
         values = []
@@ -148,7 +160,10 @@ THRESHOLDS_TEXT = (
     "it (over R, t when K is known, over a rank-2 F otherwise); failure when n_I*/n_I <= %.1f. "
     "GT failure: rotation error > %.0f deg or translation direction error > %.0f deg (pairs with "
     "a pose), or median Sampson error of the true matches under the estimated F > %.0f px "
-    "(F-only pairs). Both failure rates and PQI are %% of all runs; a run with PQI / no model "
-    "is not a failure (as the paper's Table II)." % (
+    "(F-only pairs). Both failure rates, PQI, degenerate and no model are %% of all runs; a run "
+    "without a model is not a failure (as the paper's Table II). PQI: rcme declined (poor quality "
+    "input); degenerate: rcme's degeneracy test (`Params::degeneracyTest`, on by default) found "
+    "that a homography explains the inliers about as well as F; no model: OpenCV returned none "
+    "(or too few points)." % (
         np.sqrt(metrics.CHI2_2_95), metrics.PAPER_KAPPA, metrics.ROTATION_FAILURE_DEG,
         metrics.TRANSLATION_FAILURE_DEG, metrics.F_FAILURE_PX))
