@@ -27,4 +27,5 @@ def corridor_pair(points, inlier_ratio, sigma, seed):
     label = "corridor w=%.1f sigma=%.1f" % (inlier_ratio, sigma)
     return Pair(label, "%s seed %d" % (label, seed), np.asarray(scene.points1),
                 np.asarray(scene.points2), np.asarray(scene.cameraMatrix), np.asarray(scene.R),
-                np.asarray(scene.t).reshape(3), labels=np.asarray(scene.inlierMask).ravel() > 0, sigma=sigma)
+                np.asarray(scene.t).reshape(3), labels=np.asarray(scene.inlierMask).ravel() > 0,
+                sigma=sigma)

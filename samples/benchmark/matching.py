@@ -1,8 +1,8 @@
 """SIFT correspondences with Lowe's ratio test, cached on disk so that reruns are fast.
 
 The cache key is a hash of the two images' contents and the matching parameters (not their
-modification times: a re-copied data folder keeps its cache); the points are stored in the images' original pixel coordinates even when
-the images are downscaled for detection."""
+modification times: a re-copied data folder keeps its cache); the points are stored in the
+images' original pixel coordinates even when the images are downscaled for detection."""
 import hashlib
 import json
 import os

@@ -53,7 +53,8 @@ def cumulative_curves(path, title, errors_by_method, max_error=10.0, x_label="er
           [(v, "%.1f" % v) for v in np.linspace(0, 1, 6)], to_px, x_label,
           "fraction of runs")
     grid = np.linspace(0, max_error, 400)
-    for k, (name, errors) in enumerate(errors_by_method.items()):
+    # drawn last to first, so the first methods (rcme's) stay visible where curves coincide
+    for k, (name, errors) in reversed(list(enumerate(errors_by_method.items()))):
         errors = np.sort(np.asarray(errors, np.float64))
         if len(errors) == 0:
             continue
@@ -71,6 +72,7 @@ def grouped_bars(path, title, groups, methods, values, y_label, max_value=None):
     image = _canvas(width, height, title)
     finite = [v for row in values for v in row if np.isfinite(v)]
     top = max_value or max(5.0, (max(finite) if finite else 5.0) * 1.1)
+    top = np.ceil(top / 5.0) * 5.0  # ticks at multiples of 1 (up to 5) or of 5
     plot_width = width - LEFT - RIGHT
     group_width = plot_width / max(len(groups), 1)
     bar_width = group_width * 0.85 / max(len(methods), 1)
@@ -78,7 +80,7 @@ def grouped_bars(path, title, groups, methods, values, y_label, max_value=None):
     def to_px(x, y):
         return int(LEFT + x), int(height - BOTTOM - y / top * (height - TOP - BOTTOM))
 
-    _axes(image, [], [(v, "%.0f" % v) for v in np.linspace(0, top, 6)], to_px, "", y_label)
+    _axes(image, [], [(v, "%g" % v) for v in np.linspace(0, top, 6)], to_px, "", y_label)
     for g, group in enumerate(groups):
         x_start = g * group_width + group_width * 0.075
         for m in range(len(methods)):

@@ -87,14 +87,37 @@ def table_two(rows, method_names, datasets, N):
         subset = _select(rows, N=N) if dataset == "all" else _select(rows, N=N, dataset=dataset)
         pairs = len({r["pair"] for r in subset})
         line = ["%s (#%d)" % (dataset, pairs)]
-        for method in method_names:
-            s = summarize(_select(subset, method=method))
-            declined = _pct(sum(r["status"] not in ("ok", DEGENERATE)
-                                for r in _select(subset, method=method)), s["runs"])
-            line.append("%s / %s / %s / %s" % (declined, s["degenerate"], s["paper_fail"],
-                                               s["gt_fail"]) if s["runs"] else "n/a")
+        line += [_cell(_select(subset, method=method)) for method in method_names]
         lines.append(line)
     return _table(["dataset (#pairs)"] + method_names, lines)
+
+
+CELL_LEGEND = "Each cell: PQI or no model % / degenerate % / failure % (paper metric) / GT " \
+    "failure %."
+
+
+def _cell(rows):
+    """PQI or no model / degenerate / paper failure / GT failure, % of the rows."""
+    s = summarize(rows)
+    if not s["runs"]:
+        return "n/a"
+    declined = _pct(sum(r["status"] not in ("ok", DEGENERATE) for r in rows), s["runs"])
+    return "%s / %s / %s / %s" % (declined, s["degenerate"], s["paper_fail"], s["gt_fail"])
+
+
+def overview_table(rows, method_names, iterations):
+    """All real pairs: a row per method, a Table II cell per N, and the median errors and time
+    at the largest N."""
+    N_max = max(iterations)
+    lines = []
+    for method in method_names:
+        mine = _select(rows, method=method)
+        s = summarize(_select(mine, N=N_max))
+        lines.append([method] + [_cell(_select(mine, N=N)) for N in iterations]
+                     + [s["rot"], s["trans"], s["f_err"], s["ms"]])
+    return _table(["method"] + ["N = %d" % N for N in iterations]
+                  + ["median rot. deg", "median transl. deg", "median F err. px",
+                     "median ms"], lines)
 
 
 def detail_table(rows, method_names, dataset, N):

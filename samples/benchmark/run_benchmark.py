@@ -206,10 +206,10 @@ def write_report(args, run):
               "the E methods are n/a there.\n",
               "| sequence | reference frames | pairs | rejected: matches | rejected: parallax "
               "| rejected: homography |", "|---|---|---|---|---|---|"] + run["notes"] + [""]
+    lines += ["### All real pairs\n", report.CELL_LEGEND + " Errors and times at N = %d.\n"
+              % N_max, report.overview_table(rows_real, names, args.iterations)]
     for N in args.iterations:
-        lines += ["### Table II style, N = %d\n" % N,
-                  "Each cell: PQI or no model % / degenerate % / failure % (paper metric) / GT failure "
-                  "%.\n",
+        lines += ["### Table II style, N = %d\n" % N, report.CELL_LEGEND + "\n",
                   report.table_two(rows_real, names, real_datasets, N)]
     lines += ["### Per dataset\n"]
     for N in args.iterations:
