@@ -17,17 +17,26 @@ except ImportError:  # built inside OpenCV
 CHI2_1_95 = 3.841458820694124  # chi2_1^-1(0.95): threshold = sigma * sqrt(.) = 1.96 sigma
 # Confidence ~1 keeps OpenCV's adaptive iteration bound at maxIters.
 OPENCV_CONFIDENCE = 1.0 - 1e-12
+# Both libraries' default confidence, for the runs that may stop early (Budget.adaptive).
+DEFAULT_CONFIDENCE = 0.99
 
 
 @dataclass
 class Budget:
+    """iterations: N, exactly (the paper's experiments); with adaptive, at most N, each library
+    stopping by its own adaptive bound at DEFAULT_CONFIDENCE (how they run by default)."""
     iterations: int
     sigma: float
     seed: int
+    adaptive: bool = False
 
     @property
     def threshold(self):
         return self.sigma * np.sqrt(CHI2_1_95)
+
+    @property
+    def opencv_confidence(self):
+        return DEFAULT_CONFIDENCE if self.adaptive else OPENCV_CONFIDENCE
 
 
 # Estimate.status of a run without a model: rcme declined (PQI), rcme found the inliers
@@ -55,7 +64,8 @@ def rcme_params(method, budget):
     params.sigma = budget.sigma
     params.threshold = budget.threshold
     params.maxIterations = budget.iterations
-    params.exactIterations = True
+    params.exactIterations = not budget.adaptive
+    params.confidence = DEFAULT_CONFIDENCE
     params.randomGeneratorState = budget.seed
     return params
 
@@ -102,8 +112,8 @@ def _run_opencv_f(flag):
     def run(p1, p2, K, budget):
         cv2.setRNGSeed(budget.seed)
         start = time.perf_counter()
-        F, mask = cv2.findFundamentalMat(p1, p2, flag, budget.threshold, OPENCV_CONFIDENCE,
-                                         budget.iterations)
+        F, mask = cv2.findFundamentalMat(p1, p2, flag, budget.threshold,
+                                         budget.opencv_confidence, budget.iterations)
         R = t = None
         ok = F is not None and F.shape == (3, 3) and mask is not None
         if ok and K is not None:
@@ -122,8 +132,8 @@ def _run_opencv_e(flag):
             return None  # needs a camera matrix
         cv2.setRNGSeed(budget.seed)
         start = time.perf_counter()
-        E, mask = cv2.findEssentialMat(p1, p2, K, flag, OPENCV_CONFIDENCE, budget.threshold,
-                                       budget.iterations)
+        E, mask = cv2.findEssentialMat(p1, p2, K, flag, budget.opencv_confidence,
+                                       budget.threshold, budget.iterations)
         ok = E is not None and E.shape == (3, 3) and mask is not None
         R = t = None
         if ok:
