@@ -53,13 +53,20 @@ struct MotionProblem
 // The uncalibrated problem: the state is a rank-2 F in Hartley-normalized coordinates,
 // F = T2^T Fn T1; in pixels the entries of F differ by orders of magnitude and the steps would
 // be badly conditioned. The cost stays the pixel Sampson distance.
+// The tangent (an SVD) is kept with Fn, which changes only on accept().
 struct FundamentalProblem
 {
     static constexpr int kDof = FundamentalTangent::kDof;
     Eigen::Matrix3d T1, T2;
     Eigen::Matrix3d Fn;
+    FundamentalTangent tangent;
     Eigen::Matrix3d pendingFn;
 
+    FundamentalProblem(const Eigen::Matrix3d& T1_, const Eigen::Matrix3d& T2_,
+                       const Eigen::Matrix3d& normalizedF)
+        : T1(T1_), T2(T2_), Fn(FundamentalTangent(normalizedF).compose()), tangent(Fn)
+    {
+    }
     Eigen::Matrix3d toPixels(const Eigen::Matrix3d& normalized) const
     {
         return T2.transpose() * normalized * T1;
@@ -67,16 +74,20 @@ struct FundamentalProblem
     Eigen::Matrix3d current() const { return toPixels(Fn); }
     void derivatives(Eigen::Matrix3d dF[kDof]) const
     {
-        FundamentalTangent(Fn).derivatives(dF);
+        tangent.derivatives(dF);
         for (int k = 0; k < kDof; ++k)
             dF[k] = toPixels(dF[k]);
     }
     Eigen::Matrix3d propose(const Eigen::Matrix<double, kDof, 1>& delta)
     {
-        pendingFn = FundamentalTangent(Fn).apply(delta);
+        pendingFn = tangent.apply(delta);
         return toPixels(pendingFn);
     }
-    void accept() { Fn = FundamentalTangent(pendingFn).compose(); }
+    void accept()
+    {
+        Fn = FundamentalTangent(pendingFn).compose();
+        tangent = FundamentalTangent(Fn);
+    }
 };
 
 double sampsonCost(const TwoViewData& data, const std::vector<int>& inliers,
@@ -192,13 +203,11 @@ bool fitModelOn(const TwoViewData& data, const std::vector<int>& indices, int ma
     // A 7-DoF F needs 7 constraints (a 7-point sample determines it exactly).
     if (indices.size() < static_cast<size_t>(FundamentalProblem::kDof))
         return false;
-    FundamentalProblem problem;
-    if (!normalizingTransform(data.points1, indices, problem.T1) ||
-        !normalizingTransform(data.points2, indices, problem.T2))
+    Eigen::Matrix3d T1, T2;
+    if (!normalizingTransform(data.points1, indices, T1) ||
+        !normalizingTransform(data.points2, indices, T2))
         return false;
-    problem.Fn =
-        FundamentalTangent(problem.T2.transpose().inverse() * model.F * problem.T1.inverse())
-            .compose();
+    FundamentalProblem problem(T1, T2, T2.transpose().inverse() * model.F * T1.inverse());
     levenbergMarquardt(data, indices, problem, maxIterations);
     model.F = normalizeFundamental(problem.current());
     setUncertainty(data, indices, problem, model);

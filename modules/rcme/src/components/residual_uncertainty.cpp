@@ -14,13 +14,18 @@ ResidualUncertainty::ResidualUncertainty(const Model& model, double sigma)
 {
     CV_Assert(model.uncertaintyDof > 0 && model.uncertaintyDof <= 7);
     const int P = model.uncertaintyDof;
-    Eigen::Matrix<double, 9, 7> D = Eigen::Matrix<double, 9, 7>::Zero();
+    // Directions as rows: row k is vec(dF/dtheta_k), so that row k times a is g_k.
+    Eigen::Matrix<double, 7, 9> directions = Eigen::Matrix<double, 7, 9>::Zero();
     for (int k = 0; k < P; ++k)
         for (int r = 0; r < 3; ++r)
             for (int c = 0; c < 3; ++c)
-                D(3 * r + c, k) = model.directions[k](r, c);
-    // The unused block of the covariance is zero, so the full 7 columns are harmless.
-    M_ = D * model.covariance * D.transpose();
+                directions(k, 3 * r + c) = model.directions[k](r, c);
+    // Sigma = P^T L D L^T P (the unused block of the covariance is zero and gets zero pivots), so
+    // a^T D Sigma D^T a = |D^1/2 L^T P directions a|^2: P products per point instead of 81.
+    const Eigen::LDLT<Eigen::Matrix<double, 7, 7>> ldlt(model.covariance);
+    Eigen::Matrix<double, 7, 9> permuted = ldlt.transpositionsP() * directions;
+    factor_ = ldlt.vectorD().cwiseMax(0.0).cwiseSqrt().asDiagonal() *
+              (ldlt.matrixU() * permuted);
 }
 
 void ResidualUncertainty::evaluate(const Eigen::Vector2d& x1, const Eigen::Vector2d& x2,
@@ -38,7 +43,7 @@ void ResidualUncertainty::evaluate(const Eigen::Vector2d& x1, const Eigen::Vecto
     }
     Eigen::Matrix<double, 9, 1> a;
     a << p2.x() * p1, p2.y() * p1, p2.z() * p1;
-    const double modelTerm = a.dot(M_ * a) / jj;
+    const double modelTerm = factor_.lazyProduct(a).squaredNorm() / jj;
     distanceSquared = r * r / jj;
     // The leverage-corrected variance of a sample point can round to or below zero when the model
     // fits it exactly; a floor keeps the test statistic finite.

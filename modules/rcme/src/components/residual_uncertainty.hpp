@@ -32,7 +32,8 @@ public:
 
 private:
     Eigen::Matrix3d F_;
-    Eigen::Matrix<double, 9, 9> M_;
+    //! C with C^T C = M: a^T M a = |C a|^2 (rows beyond the model's DoF are zero).
+    Eigen::Matrix<double, 7, 9> factor_;
     double sigmaSquared_;
 };
 
