@@ -28,7 +28,7 @@ public:
                                          params.maxIterations);
     }
 
-    Score score(const TwoViewData& data, const Model& model) override
+    Score evaluate(const TwoViewData& data, const Model& model) override
     {
         const double noiseBound = inlierBound_ * sigma_ * sigma_;
         int count = 0, certainCount = 0;
@@ -47,6 +47,11 @@ public:
     void classify(const TwoViewData& data, const Model& model, std::vector<uchar>& mask) override
     {
         classifyByUncertainty(data, model, sigma_, inlierBound_, mask);
+    }
+
+    std::unique_ptr<Scorer> clone() const override
+    {
+        return std::make_unique<CovarianceInlierScorer>(*this);
     }
 
 private:

@@ -27,6 +27,10 @@ public:
     int sampleSize() const override { return 8; }
     int maxSolutions() const override { return 1; }
     bool isOverParameterized() const override { return true; }
+    std::unique_ptr<MinimalSolver> clone() const override
+    {
+        return std::make_unique<EightPointSolver>(*this);
+    }
 
     int estimate(const TwoViewData& data, const std::vector<int>& sample,
                  std::vector<Model>& models) override

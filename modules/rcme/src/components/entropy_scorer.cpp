@@ -40,7 +40,7 @@ public:
                                          params.maxIterations);
     }
 
-    Score score(const TwoViewData& data, const Model& model) override
+    Score evaluate(const TwoViewData& data, const Model& model) override
     {
         Score score;
         const double sigmaSquared = sigma_ * sigma_;
@@ -71,13 +71,20 @@ public:
         // inflated by a loose model's wide bands would make every tighter model fail the size
         // test, its refinement included.
         if (quality)
-            bestQualityRatio_ =
-                std::max(bestQualityRatio_, static_cast<double>(certainCount) / pointCount_);
+            score.runEvidence = static_cast<double>(certainCount) / pointCount_;
         // Chance support is judged on the noise-only band too: a loose model's wide bands catch
-        // random points by their width alone.
-        score.isCandidate = quality && certainCount >= minimalSupport_ && isStillCandidate(score);
+        // random points by their width alone. The size test waits for commit().
+        score.isCandidate = quality && certainCount >= minimalSupport_;
         return score;
     }
+
+    void commit(Score& score) override
+    {
+        bestQualityRatio_ = std::max(bestQualityRatio_, score.runEvidence);
+        score.isCandidate = score.isCandidate && isStillCandidate(score);
+    }
+
+    std::unique_ptr<Scorer> clone() const override { return std::make_unique<EntropyScorer>(*this); }
 
     bool isStillCandidate(const Score& score) const override
     {

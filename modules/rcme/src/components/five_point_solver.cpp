@@ -239,6 +239,10 @@ public:
     int sampleSize() const override { return 5; }
     int maxSolutions() const override { return 10; }
     bool isOverParameterized() const override { return false; }
+    std::unique_ptr<MinimalSolver> clone() const override
+    {
+        return std::make_unique<FivePointSolver>(*this);
+    }
 
     int estimate(const TwoViewData& data, const std::vector<int>& sample,
                  std::vector<Model>& models) override

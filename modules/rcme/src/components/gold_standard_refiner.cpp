@@ -223,15 +223,16 @@ public:
 
     bool refine(const TwoViewData& data, const std::vector<uchar>& mask, Model& model) override
     {
-        std::vector<int> inliers;
+        inliers_.clear(); // reused: local optimisation refines inside the hypothesis loop
         for (size_t i = 0; i < mask.size(); ++i)
             if (mask[i])
-                inliers.push_back(static_cast<int>(i));
-        return fitModelOn(data, inliers, maxIterations_, model);
+                inliers_.push_back(static_cast<int>(i));
+        return fitModelOn(data, inliers_, maxIterations_, model);
     }
 
 private:
     int maxIterations_;
+    std::vector<int> inliers_;
 };
 
 } // namespace

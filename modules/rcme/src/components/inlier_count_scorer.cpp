@@ -25,7 +25,7 @@ public:
         minimalSupport_ = minimalSupport(data, data.threshold, sampleSize, maxIterations);
     }
 
-    Score score(const TwoViewData& data, const Model& model) override
+    Score evaluate(const TwoViewData& data, const Model& model) override
     {
         int count = 0;
         for (size_t i = 0; i < data.points1.size(); ++i)
@@ -44,6 +44,11 @@ public:
         for (size_t i = 0; i < mask.size(); ++i)
             mask[i] = sampsonDistanceSquared(model.F, data.points1[i], data.points2[i]) <=
                       thresholdSquared_;
+    }
+
+    std::unique_ptr<Scorer> clone() const override
+    {
+        return std::make_unique<InlierCountScorer>(*this);
     }
 
 private:

@@ -27,7 +27,7 @@
 // - Candidate: inlierCount >= minimalSupport(threshold), so all-outlier input is still "poor
 //   quality input".
 // The Gaussian densities of a hypothesis are computed once into a buffer sized in the
-// constructor (no allocation per score); like the other scorers this one is not thread-safe.
+// constructor (no allocation per score); threads evaluate on their own clone().
 
 #include "framework/components.hpp"
 #include "geometry/epipolar.hpp"
@@ -60,9 +60,9 @@ public:
         minimalSupport_ = minimalSupport(data, data.threshold, sampleSize, params.maxIterations);
     }
 
-    Score score(const TwoViewData& data, const Model& model) override
+    Score evaluate(const TwoViewData& data, const Model& model) override
     {
-        const int count = evaluate(data, model);
+        const int count = fillDensities(data, model);
         Score score;
         score.inlierCount = count;
         score.value = negativeLogLikelihood(fitMixingWeight());
@@ -78,16 +78,18 @@ public:
                       thresholdSquared_;
     }
 
+    std::unique_ptr<Scorer> clone() const override { return std::make_unique<MlesacScorer>(*this); }
+
     double mixingWeight(const TwoViewData& data, const Model& model)
     {
-        evaluate(data, model);
+        fillDensities(data, model);
         return fitMixingWeight();
     }
 
 private:
     // Fills densities_ with each point's inlier density N(e_i; 0, sigma^2); returns the number
     // of points within the threshold (the classify() rule).
-    int evaluate(const TwoViewData& data, const Model& model)
+    int fillDensities(const TwoViewData& data, const Model& model)
     {
         if (densities_.size() != data.points1.size()) // only if called with other data
             densities_.resize(data.points1.size());

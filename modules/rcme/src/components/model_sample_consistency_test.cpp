@@ -40,6 +40,11 @@ public:
         return true;
     }
 
+    std::unique_ptr<ModelVerifier> clone() const override
+    {
+        return std::make_unique<ModelSampleConsistencyTest>(*this);
+    }
+
 private:
     double sigma_;
     double bound_;

@@ -41,7 +41,7 @@ public:
         }
     }
 
-    void generateSample(int iteration, std::vector<int>& sample) override
+    void generateSample(int iteration, std::vector<int>& sample) const override
     {
         const double t = iteration + 1.0;
         const auto it = std::lower_bound(schedule_.begin(), schedule_.end(), t);

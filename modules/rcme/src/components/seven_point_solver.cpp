@@ -94,6 +94,10 @@ public:
     int sampleSize() const override { return 7; }
     int maxSolutions() const override { return 3; }
     bool isOverParameterized() const override { return false; }
+    std::unique_ptr<MinimalSolver> clone() const override
+    {
+        return std::make_unique<SevenPointSolver>(*this);
+    }
 
     int estimate(const TwoViewData& data, const std::vector<int>& sample,
                  std::vector<Model>& models) override

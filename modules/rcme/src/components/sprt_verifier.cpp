@@ -76,6 +76,12 @@ public:
     }
 
     long long pointsChecked() const override { return pointsChecked_; }
+    // epsilon and delta follow every hypothesis tested so far.
+    bool isSequential() const override { return true; }
+    std::unique_ptr<ModelVerifier> clone() const override
+    {
+        return std::make_unique<SprtVerifier>(*this);
+    }
 
 private:
     void record(int checked, bool rejected, double consistentRatio)

@@ -29,6 +29,10 @@ public:
     int sampleSize() const override { return solver_->sampleSize(); }
     int maxSolutions() const override { return solver_->maxSolutions(); }
     bool isOverParameterized() const override { return solver_->isOverParameterized(); }
+    std::unique_ptr<MinimalSolver> clone() const override
+    {
+        return std::make_unique<UncertainModelInstantiation>(solver_->clone(), fitIterations_);
+    }
 
     int estimate(const TwoViewData& data, const std::vector<int>& sample,
                  std::vector<Model>& models) override

@@ -21,7 +21,7 @@ public:
         CV_Assert(pointCount >= sampleSize && sampleSize > 0);
     }
 
-    void generateSample(int iteration, std::vector<int>& sample) override
+    void generateSample(int iteration, std::vector<int>& sample) const override
     {
         uint64_t state = iterationState(seed_, iteration);
         sample.resize(static_cast<size_t>(sampleSize_));

@@ -27,6 +27,9 @@ public:
         Score score;
     };
 
+    //! Room for a front far larger than seen in practice, so adding rarely allocates.
+    CandidateSet() { front_.reserve(32); }
+
     //! Adds a candidate unless an earlier one is at least as good in both score and inlier
     //! count (ties keep the earliest). Returns whether it was added.
     bool add(const Model& model, const Score& score);

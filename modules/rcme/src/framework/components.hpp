@@ -48,18 +48,22 @@ struct Score
     double meanEntropy = std::numeric_limits<double>::quiet_NaN();
     //! Whether the hypothesis passed the method's acceptance tests (may become the estimate).
     bool isCandidate = false;
+    //! What the hypothesis tells the run-wide tests (RCME: its ratio of points in the noise-only
+    //! band when it passes the quality test, else 0); read by Scorer::commit().
+    double runEvidence = 0;
 
     bool isBetterThan(const Score& other) const { return value < other.value; }
 };
 
 //! Draws minimal samples. Sample j depends only on (seed, j), so runs are reproducible and
-//! iterations can be evaluated in any order.
+//! iterations can be evaluated in any order, on any thread.
 class Sampler
 {
 public:
     virtual ~Sampler() = default;
     //! Fills `sample` (size = sample size) with distinct indices for iteration `iteration`.
-    virtual void generateSample(int iteration, std::vector<int>& sample) = 0;
+    //! Thread-safe.
+    virtual void generateSample(int iteration, std::vector<int>& sample) const = 0;
 };
 
 //! Instantiates hypotheses from a minimal sample.
@@ -76,6 +80,8 @@ public:
     //! means the sample is degenerate.
     virtual int estimate(const TwoViewData& data, const std::vector<int>& sample,
                          std::vector<Model>& models) = 0;
+    //! An independent copy (its own buffers) for another thread.
+    virtual std::unique_ptr<MinimalSolver> clone() const = 0;
 };
 
 //! Tests a hypothesis before it is scored (model-sample consistency, SPRT, ...).
@@ -89,14 +95,34 @@ public:
     //! Correspondences (outside the sample) whose residual this verifier evaluated so far: the
     //! cost SPRT saves is reported from it.
     virtual long long pointsChecked() const { return 0; }
+    //! Whether the outcome depends on the hypotheses verified before (SPRT adapts its test):
+    //! such a verifier, and every one after it, runs on one thread in iteration order.
+    virtual bool isSequential() const { return false; }
+    //! An independent copy (its own buffers) for another thread.
+    virtual std::unique_ptr<ModelVerifier> clone() const = 0;
 };
 
-//! Scores hypotheses and classifies points.
+/** Scores hypotheses and classifies points. A score is computed in two steps so that hypotheses
+can be evaluated on several threads with the result of a sequential run: evaluate() depends only
+on the model (any thread, its own copy of the scorer), commit() feeds the run-wide state and
+settles what depends on it (called in iteration order, on the loop's scorer). */
 class Scorer
 {
 public:
     virtual ~Scorer() = default;
-    virtual Score score(const TwoViewData& data, const Model& model) = 0;
+    //! The score of `model` before the run-wide tests; uses only this scorer's buffers.
+    virtual Score evaluate(const TwoViewData& data, const Model& model) = 0;
+    //! Records an evaluated score in the run so far and completes `score.isCandidate`.
+    virtual void commit(Score& score) { (void)score; }
+    //! evaluate() then commit(): the score of `model` in a sequential run.
+    Score score(const TwoViewData& data, const Model& model)
+    {
+        Score result = evaluate(data, model);
+        commit(result);
+        return result;
+    }
+    //! An independent copy (its own buffers) for another thread, to call evaluate() on.
+    virtual std::unique_ptr<Scorer> clone() const = 0;
     //! Writes 1 for the inliers of `model`, 0 otherwise; `mask` is resized to data.size().
     virtual void classify(const TwoViewData& data, const Model& model,
                           std::vector<uchar>& mask) = 0;
@@ -137,6 +163,8 @@ struct EstimatorComponents
     std::unique_ptr<Refiner> refiner; //!< null when refinement is off
     //! Refits new candidates on their inliers (LO-RANSAC); null when local optimisation is off.
     std::unique_ptr<Refiner> localOptimizer;
+    //! Evaluate hypotheses on several threads (Params::isParallel); the result is the same.
+    bool parallel = false;
 };
 
 /** The inlier count that chance alone exceeds with probability at most 5 % over a whole run: a

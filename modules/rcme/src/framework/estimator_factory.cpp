@@ -102,6 +102,7 @@ EstimatorComponents createEstimator(const Params& params, const TwoViewData& dat
         c.refiner = createGoldStandardRefiner(params.refineIterations);
     if (params.localOptimization)
         c.localOptimizer = createGoldStandardRefiner(kLocalOptimizationIterations);
+    c.parallel = params.isParallel;
     return c;
 }
 

@@ -11,15 +11,6 @@ namespace detail {
 
 namespace {
 
-bool passesVerifiers(EstimatorComponents& c, const TwoViewData& data,
-                     const std::vector<int>& sample, Model& model)
-{
-    for (auto& verifier : c.verifiers)
-        if (!verifier->isModelGood(data, sample, model))
-            return false;
-    return true;
-}
-
 // Refines the selected model on its inliers and classifies again, until the inlier set stops
 // changing (a refined model usually gathers inliers its minimal sample missed). A refinement is
 // kept only if the scorer still accepts it and likes it at least as much, so a diverging
@@ -84,7 +75,203 @@ void optimizeLocally(const TwoViewData& data, EstimatorComponents& c, const Mode
         candidates.add(refit, score);
 }
 
+// With Params::isParallel, hypotheses are evaluated in batches of this many iterations. The size
+// is fixed, not taken from the thread count, so the work done never depends on the threads.
+constexpr int kParallelBatch = 64;
+
+// The hypotheses of one iteration as evaluated, before they meet the state of the run.
+struct IterationSlot
+{
+    std::vector<int> sample;
+    int solutions = 0; //!< what the solver returned (0: degenerate sample)
+    std::vector<Model> models;
+    std::vector<uchar> alive; //!< passed the verifiers so far
+    std::vector<Score> scores;
+    long long pointsChecked = 0; //!< by the verifiers, over this iteration's hypotheses
+};
+
+// The components one thread evaluates hypotheses with: the loop's own for the first lane, copies
+// with their own buffers for the others.
+struct Lane
+{
+    MinimalSolver* solver = nullptr;
+    std::vector<ModelVerifier*> verifiers; //!< those before the first sequential one
+    Scorer* scorer = nullptr;
+    std::unique_ptr<MinimalSolver> ownSolver;
+    std::vector<std::unique_ptr<ModelVerifier>> ownVerifiers;
+    std::unique_ptr<Scorer> ownScorer;
+};
+
+/* The hypothesis loop. Each batch of iterations is evaluated first (sample j from (seed, j),
+solve, verify, Scorer::evaluate; on several threads when parallel), sequential verifiers (SPRT)
+in iteration order between the two parallel steps; then the batch is committed in iteration order
+on one thread: run-wide tests (Scorer::commit), candidate set, local optimisation, iteration
+bound. Evaluation reads no state of the run, so the result is that of a sequential run whatever
+the batch size and thread count (a sequential run is batches of one). Iterations beyond a bound
+lowered inside a batch are evaluated but never committed. Every buffer is sized here: the loop
+itself does not allocate. */
+class HypothesisSearch
+{
+public:
+    HypothesisSearch(const TwoViewData& data, EstimatorComponents& c) : data_(data), c_(c)
+    {
+        while (firstSequential_ < c.verifiers.size() &&
+               !c.verifiers[firstSequential_]->isSequential())
+            ++firstSequential_;
+        for (size_t v = firstSequential_; v < c.verifiers.size(); ++v)
+            sequentialVerifiers_.push_back(c.verifiers[v].get());
+        batch_ = c.parallel ? kParallelBatch : 1;
+        const int laneCount = c.parallel ? std::max(1, std::min(getNumThreads(), batch_)) : 1;
+        lanes_.resize(static_cast<size_t>(laneCount));
+        for (size_t l = 0; l < lanes_.size(); ++l) {
+            Lane& lane = lanes_[l];
+            if (l == 0) {
+                lane.solver = c.solver.get();
+                lane.scorer = c.scorer.get();
+                for (size_t v = 0; v < firstSequential_; ++v)
+                    lane.verifiers.push_back(c.verifiers[v].get());
+                continue;
+            }
+            lane.ownSolver = c.solver->clone();
+            lane.solver = lane.ownSolver.get();
+            lane.ownScorer = c.scorer->clone();
+            lane.scorer = lane.ownScorer.get();
+            for (size_t v = 0; v < firstSequential_; ++v) {
+                lane.ownVerifiers.push_back(c.verifiers[v]->clone());
+                lane.verifiers.push_back(lane.ownVerifiers.back().get());
+            }
+        }
+        const size_t solutions = static_cast<size_t>(c.solver->maxSolutions());
+        slots_.resize(static_cast<size_t>(batch_));
+        for (IterationSlot& slot : slots_) {
+            slot.sample.resize(static_cast<size_t>(c.solver->sampleSize()));
+            slot.models.reserve(solutions);
+            slot.alive.resize(solutions);
+            slot.scores.resize(solutions);
+        }
+    }
+
+    void run(CandidateSet& candidates, RansacResult& result)
+    {
+        int iteration = 0;
+        while (iteration < c_.termination->iterationBound()) {
+            const int count = std::min(batch_, c_.termination->iterationBound() - iteration);
+            evaluate(iteration, count);
+            for (int k = 0; k < count && iteration < c_.termination->iterationBound();
+                 ++k, ++iteration)
+                commit(slots_[static_cast<size_t>(k)], candidates, result);
+        }
+        result.iterations = iteration;
+        if (result.hypotheses > 0)
+            result.pointsPerHypothesis =
+                static_cast<double>(pointsEvaluated_) / static_cast<double>(result.hypotheses);
+    }
+
+private:
+    // Calls step(lane, k) for k in [0, count), spread over the lanes when there are several.
+    template <class Step> void forEachIteration(int count, const Step& step)
+    {
+        const int laneCount = static_cast<int>(lanes_.size());
+        if (laneCount == 1) {
+            for (int k = 0; k < count; ++k)
+                step(lanes_[0], k);
+            return;
+        }
+        parallel_for_(
+            Range(0, laneCount),
+            [&](const Range& range) {
+                for (int l = range.start; l < range.end; ++l)
+                    for (int k = l; k < count; k += laneCount)
+                        step(lanes_[static_cast<size_t>(l)], k);
+            },
+            laneCount);
+    }
+
+    void evaluate(int firstIteration, int count)
+    {
+        const bool sequential = !sequentialVerifiers_.empty();
+        forEachIteration(count, [&](Lane& lane, int k) {
+            IterationSlot& slot = slots_[static_cast<size_t>(k)];
+            c_.sampler->generateSample(firstIteration + k, slot.sample);
+            slot.solutions = lane.solver->estimate(data_, slot.sample, slot.models);
+            slot.pointsChecked = 0;
+            for (size_t h = 0; h < slot.models.size(); ++h) {
+                slot.alive[h] = passes(lane.verifiers, slot, h);
+                if (slot.alive[h] && !sequential)
+                    slot.scores[h] = lane.scorer->evaluate(data_, slot.models[h]);
+            }
+        });
+        if (!sequential)
+            return;
+        for (int k = 0; k < count; ++k) {
+            IterationSlot& slot = slots_[static_cast<size_t>(k)];
+            for (size_t h = 0; h < slot.models.size(); ++h)
+                slot.alive[h] = slot.alive[h] && passes(sequentialVerifiers_, slot, h);
+        }
+        forEachIteration(count, [&](Lane& lane, int k) {
+            IterationSlot& slot = slots_[static_cast<size_t>(k)];
+            for (size_t h = 0; h < slot.models.size(); ++h)
+                if (slot.alive[h])
+                    slot.scores[h] = lane.scorer->evaluate(data_, slot.models[h]);
+        });
+    }
+
+    void commit(IterationSlot& slot, CandidateSet& candidates, RansacResult& result)
+    {
+        if (slot.solutions == 0) {
+            ++result.degenerateSamples;
+            return;
+        }
+        result.hypotheses += static_cast<long long>(slot.models.size());
+        pointsEvaluated_ += slot.pointsChecked;
+        for (size_t h = 0; h < slot.models.size(); ++h) {
+            if (!slot.alive[h])
+                continue;
+            pointsEvaluated_ += data_.size(); // scored on every point
+            Score& score = slot.scores[h];
+            c_.scorer->commit(score);
+            const Model& model = slot.models[h];
+            if (!score.isCandidate || !candidates.add(model, score))
+                continue;
+            if (c_.localOptimizer)
+                optimizeLocally(data_, c_, model, candidates, localInliers_);
+            if (const CandidateSet::Candidate* best = candidates.best(*c_.scorer))
+                c_.termination->update(best->score, data_.size());
+        }
+    }
+
+    // The points a verifier checks are counted per slot, not read from the verifiers at the end:
+    // a parallel run verifies iterations it does not commit, on copies of the verifiers.
+    bool passes(const std::vector<ModelVerifier*>& verifiers, IterationSlot& slot, size_t h) const
+    {
+        for (ModelVerifier* verifier : verifiers) {
+            const long long checkedBefore = verifier->pointsChecked();
+            const bool isGood = verifier->isModelGood(data_, slot.sample, slot.models[h]);
+            slot.pointsChecked += verifier->pointsChecked() - checkedBefore;
+            if (!isGood)
+                return false;
+        }
+        return true;
+    }
+
+    const TwoViewData& data_;
+    EstimatorComponents& c_;
+    size_t firstSequential_ = 0;
+    int batch_ = 1;
+    std::vector<Lane> lanes_;
+    std::vector<IterationSlot> slots_;
+    std::vector<ModelVerifier*> sequentialVerifiers_; //!< from the first sequential one on
+    std::vector<uchar> localInliers_; //!< local optimisation's buffer, reused
+    long long pointsEvaluated_ = 0;   //!< residuals evaluated by verification and scoring
+};
+
 } // namespace
+
+void searchHypotheses(const TwoViewData& data, EstimatorComponents& components,
+                      CandidateSet& candidates, RansacResult& result)
+{
+    HypothesisSearch(data, components).run(candidates, result);
+}
 
 RansacResult runRansac(const TwoViewData& data, EstimatorComponents& c)
 {
@@ -98,39 +285,9 @@ RansacResult runRansac(const TwoViewData& data, EstimatorComponents& c)
         return result;
     }
 
-    std::vector<int> sample(static_cast<size_t>(m));
-    std::vector<Model> models;
-    models.reserve(static_cast<size_t>(c.solver->maxSolutions()));
     CandidateSet candidates;
-    std::vector<uchar> inliers; // local optimisation's buffer, reused
-    long long scoredHypotheses = 0;
-    int iteration = 0;
-    for (; iteration < c.termination->iterationBound(); ++iteration) {
-        c.sampler->generateSample(iteration, sample);
-        if (c.solver->estimate(data, sample, models) == 0) {
-            ++result.degenerateSamples;
-            continue;
-        }
-        for (Model& model : models) {
-            ++result.hypotheses;
-            if (!passesVerifiers(c, data, sample, model))
-                continue;
-            ++scoredHypotheses;
-            const Score score = c.scorer->score(data, model);
-            if (!score.isCandidate || !candidates.add(model, score))
-                continue;
-            if (c.localOptimizer)
-                optimizeLocally(data, c, model, candidates, inliers);
-            if (const CandidateSet::Candidate* best = candidates.best(*c.scorer))
-                c.termination->update(best->score, n);
-        }
-    }
-    result.iterations = iteration;
-    long long pointsEvaluated = scoredHypotheses * n;
-    for (const auto& verifier : c.verifiers)
-        pointsEvaluated += verifier->pointsChecked();
-    if (result.hypotheses > 0)
-        result.pointsPerHypothesis = static_cast<double>(pointsEvaluated) / result.hypotheses;
+    searchHypotheses(data, c, candidates, result);
+    const int iteration = result.iterations;
 
     const CandidateSet::Candidate* best = candidates.best(*c.scorer);
     if (!best) {

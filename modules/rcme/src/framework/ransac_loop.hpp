@@ -34,6 +34,15 @@ candidate, adapt the iteration bound; then refine the selected model and classif
 No hypothesis that is not a candidate is ever returned: with none, the status says why. */
 RansacResult runRansac(const TwoViewData& data, EstimatorComponents& components);
 
+class CandidateSet;
+
+/** runRansac's hypothesis loop alone (on several threads when components.parallel): adds the
+candidates to `candidates`, sets result.iterations, degenerateSamples, hypotheses and
+pointsPerHypothesis. Needs at least
+the solver's sample size of points. */
+void searchHypotheses(const TwoViewData& data, EstimatorComponents& components,
+                      CandidateSet& candidates, RansacResult& result);
+
 } // namespace detail
 } // namespace rcme
 } // namespace cv

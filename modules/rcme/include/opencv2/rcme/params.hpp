@@ -71,8 +71,8 @@ struct CV_EXPORTS_W_SIMPLE Params
     //! Sets every field to its documented default.
     CV_WRAP Params();
     /** @brief Carries over the fields shared with cv::UsacParams: confidence, maxIterations,
-    randomGeneratorState, threshold, and sampler (uniform or PROSAC). The other USAC fields
-    (score, local optimisation, neighbourhoods, isParallel) have no counterpart and are ignored;
+    randomGeneratorState, threshold, isParallel, and sampler (uniform or PROSAC). The other USAC
+    fields (score, local optimisation, neighbourhoods) have no counterpart and are ignored;
     NAPSAC samplers raise cv::Error::StsBadArg.
 
     Not wrapped for Python: OpenCV's generator (4.6) turns an exception thrown by a constructor
@@ -142,6 +142,12 @@ struct CV_EXPORTS_W_SIMPLE Params
     ratio of the two best descriptor distances), CV_32F or CV_64F. Empty (default): the points
     are taken as already sorted by decreasing quality, as OpenCV's USAC PROSAC assumes. */
     CV_PROP_RW Mat matchQuality;
+    /** Evaluate hypotheses on OpenCV's threads (cv::parallel_for_, as many as
+    cv::getNumThreads()), in batches of 64 iterations. The result is the same as without it, for
+    every method and whatever the thread count: sample j depends only on (seed, j), and what
+    depends on earlier hypotheses (candidate set, ties, iteration bound, RCME's size test, SPRT)
+    is decided in iteration order. Default false. */
+    CV_PROP_RW bool isParallel;
 };
 
 /** @brief Everything an estimation produced, for callers who want more than the model.

@@ -516,7 +516,7 @@ PYBIND11_MODULE(rcme, m)
     // A static factory rather than a constructor, as in cv2.rcme: see params.hpp.
     const char* docFromUsac = "fromUsacParams(usacParams) -> retval\n"
                               ".   Params with confidence, maxIterations, randomGeneratorState, "
-                              "threshold and sampler carried over from a cv2.UsacParams.";
+                              "threshold, isParallel and sampler carried over from a cv2.UsacParams.";
     params.def_static("fromUsacParams", &paramsFromUsac, py::arg("usacParams"), docFromUsac);
     m.def("Params_fromUsacParams", &paramsFromUsac, py::arg("usacParams"), docFromUsac);
     Fields<Params> paramsFields(params);
@@ -547,7 +547,9 @@ PYBIND11_MODULE(rcme, m)
         .plain("degeneracyTest", &Params::degeneracyTest,
                "final inliers fit a homography as well as F -> degenerate status; default True")
         .mat("matchQuality", &Params::matchQuality,
-             "SAMPLER_PROSAC: one score per correspondence, higher is better; None: sorted");
+             "SAMPLER_PROSAC: one score per correspondence, higher is better; None: sorted")
+        .plain("isParallel", &Params::isParallel,
+               "evaluate hypotheses on OpenCV's threads, same result; default False");
     paramsFields.addKeywordInit("Params");
     paramsFields.addRepr("Params");
 

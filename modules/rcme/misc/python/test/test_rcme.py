@@ -185,6 +185,7 @@ class _RcmeSuite:
         self.assertIs(p.degeneracyTest, True)
         self.assertTrue(0.5 <= p.inlierRatioFactor <= 1.0)
         self.assertTrue(np.isfinite(p.entropyThreshold))
+        self.assertIs(p.isParallel, False)
 
     def test_params_attribute_round_trip(self):
         b = self.b
@@ -194,7 +195,7 @@ class _RcmeSuite:
             "maxIterations": 321, "exactIterations": True, "randomGeneratorState": 42,
             "refine": False, "refineIterations": 7, "alpha": 0.01, "entropyThreshold": 2.0,
             "inlierRatioFactor": 0.6, "priorInlierRatio": 0.3, "consistencyDof": 3,
-            "degeneracyTest": False,
+            "degeneracyTest": False, "isParallel": True,
         }
         p = b.Params()
         for name, value in values.items():
@@ -217,7 +218,9 @@ class _RcmeSuite:
         u.randomGeneratorState = 7
         u.threshold = 2.5
         u.sampler = cv2.SAMPLING_PROSAC
+        u.isParallel = True
         p = self.b.Params.fromUsacParams(u)
+        self.assertIs(p.isParallel, True)
         self.assertAlmostEqual(p.confidence, 0.95)
         self.assertEqual(p.maxIterations, 321)
         self.assertEqual(p.randomGeneratorState, 7)
@@ -632,6 +635,31 @@ class _RcmeSuite:
         self.assertEqual(r1[0], r2[0])
         np.testing.assert_array_equal(r1[2], r2[2])
         np.testing.assert_array_equal(r1[4], r2[4])
+
+    def test_parallel_same_result_whatever_the_thread_count(self):
+        # Params.isParallel spreads hypotheses over cv2's threads; every method must give the
+        # result of a sequential run, bit for bit, with 1, 2 or 3 threads
+        import cv2
+        b = self.b
+        s = self.make_scene(seed=24)
+        previous = cv2.getNumThreads()
+        try:
+            for method in (b.METHOD_STANDARD, b.METHOD_RCME, b.METHOD_PRCME, b.METHOD_MLESAC,
+                           b.METHOD_COV_RANSAC):
+                p = self.make_params(method=method, randomGeneratorState=5, maxIterations=300)
+                reference = b.estimateRelativeMotion(s.points1, s.points2, s.cameraMatrix, p)
+                p.isParallel = True
+                for threads in (1, 2, 3):
+                    cv2.setNumThreads(threads)
+                    r = b.estimateRelativeMotion(s.points1, s.points2, s.cameraMatrix, p)
+                    self.assertEqual(r.status, reference.status, (method, threads))
+                    self.assertEqual(r.iterations, reference.iterations, (method, threads))
+                    np.testing.assert_array_equal(r.mask, reference.mask)
+                    if reference.status == b.STATUS_SUCCESS:
+                        np.testing.assert_array_equal(r.F, reference.F)
+                        np.testing.assert_array_equal(r.R, reference.R)
+        finally:
+            cv2.setNumThreads(previous)
 
     def test_all_outliers(self):
         b = self.b
