@@ -223,7 +223,10 @@ public:
 
     bool refine(const TwoViewData& data, const std::vector<uchar>& mask, Model& model) override
     {
-        inliers_.clear(); // reused: local optimisation refines inside the hypothesis loop
+        // Reused, and sized for every point at once: local optimisation refines inside the
+        // hypothesis loop, which must not allocate.
+        inliers_.reserve(mask.size());
+        inliers_.clear();
         for (size_t i = 0; i < mask.size(); ++i)
             if (mask[i])
                 inliers_.push_back(static_cast<int>(i));

@@ -141,6 +141,8 @@ public:
                 lane.verifiers.push_back(lane.ownVerifiers.back().get());
             }
         }
+        if (c.localOptimizer)
+            localInliers_.assign(static_cast<size_t>(data.size()), 0);
         const size_t solutions = static_cast<size_t>(c.solver->maxSolutions());
         slots_.resize(static_cast<size_t>(batch_));
         for (IterationSlot& slot : slots_) {
