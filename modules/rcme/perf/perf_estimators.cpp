@@ -71,6 +71,42 @@ void runCall(benchmark::State& state, cv::rcme::Method method, int n, int iterat
     state.counters["success"] = report.status == cv::rcme::STATUS_SUCCESS;
 }
 
+// RCME as the paper states it: no Gauss-Newton fit of a hypothesis to its own sample
+// (Params::sampleFitIterations = 0), the like-for-like comparison with Standard's instantiation.
+void runRcmeWithoutSampleFit(benchmark::State& state, int n, int iterations, bool calibrated)
+{
+    const cv::rcme::SyntheticScene scene = corridor(n);
+    cv::rcme::Params params = callParams(cv::rcme::METHOD_RCME, iterations, true);
+    params.sampleFitIterations = 0;
+    const cv::Mat K = calibrated ? scene.cameraMatrix : cv::Mat();
+    cv::rcme::Report report;
+    for (auto _ : state) {
+        report = cv::rcme::estimateRelativeMotion(scene.points1, scene.points2, K, params);
+        benchmark::DoNotOptimize(report.F.data);
+    }
+    state.counters["inliers"] = report.inlierCount;
+    state.counters["success"] = report.status == cv::rcme::STATUS_SUCCESS;
+}
+
+// Params::isParallel on `threads` of OpenCV's threads; wall-clock time, the speed-up is the ratio
+// of the threads:1 and threads:2 lines.
+void runParallel(benchmark::State& state, cv::rcme::Method method, int n, int threads)
+{
+    const cv::rcme::SyntheticScene scene = corridor(n);
+    cv::rcme::Params params = callParams(method, 1000, true);
+    params.isParallel = true;
+    const int previousThreads = cv::getNumThreads();
+    cv::setNumThreads(threads);
+    cv::rcme::Report report;
+    for (auto _ : state) {
+        report = cv::rcme::estimateRelativeMotion(scene.points1, scene.points2,
+                                                  scene.cameraMatrix, params);
+        benchmark::DoNotOptimize(report.F.data);
+    }
+    cv::setNumThreads(previousThreads);
+    state.counters["inliers"] = report.inlierCount;
+}
+
 void runOpenCv(benchmark::State& state, int n, int iterations)
 {
     const cv::rcme::SyntheticScene scene = corridor(n);
@@ -108,6 +144,20 @@ bool registerCalls()
                                                      calibrated)
                             ->Unit(benchmark::kMillisecond);
                     }
+    for (bool calibrated : {true, false})
+        benchmark::RegisterBenchmark(
+            cv::format("call/RCME-sampleFit0/%s/n:500/N:1000/exact", calibrated ? "K" : "F")
+                .c_str(),
+            runRcmeWithoutSampleFit, 500, 1000, calibrated)
+            ->Unit(benchmark::kMillisecond);
+    for (const MethodName& m : kMethods)
+        for (int threads : {1, 2})
+            benchmark::RegisterBenchmark(
+                cv::format("parallel/%s/K/n:2000/N:1000/exact/threads:%d", m.name, threads)
+                    .c_str(),
+                runParallel, m.method, 2000, threads)
+                ->Unit(benchmark::kMillisecond)
+                ->UseRealTime();
     for (int n : pointCounts)
         for (int N : iterationCounts)
             benchmark::RegisterBenchmark(
