@@ -63,19 +63,48 @@ def to_ms(entry, key):
 
 
 def collect(report):
-    calls, parallel = {}, {}
+    """Call times (CPU ms) and their report counters, parallel wall times, and the component
+    benchmarks (CPU ns per solver call, per scored point)."""
+    calls, counters, parallel, components = {}, {}, {}, {}
     for entry in report["benchmarks"]:
         if entry.get("run_type", "iteration") != "iteration" or entry.get("error_occurred"):
+            continue
+        if entry["name"].startswith(("solver/", "score-per-point/")):
+            per_item = entry["name"].startswith("score-per-point/")
+            components[entry["name"]] = (1e9 / entry["items_per_second"] if per_item
+                                         else to_ms(entry, "cpu_time") * 1e6)
             continue
         m = NAME.match(entry["name"])
         if m:
             key = (m["method"], m["model"], int(m["n"]), int(m["N"]), m["mode"])
             calls[key] = to_ms(entry, "cpu_time")
+            counters[key] = entry
             continue
         m = PARALLEL.match(entry["name"])
         if m:
             parallel[(m["method"], int(m["threads"]))] = to_ms(entry, "real_time")
-    return calls, parallel
+    return calls, counters, parallel, components
+
+
+def print_stage_budget(components, counters):
+    """Where a hypothesis' time goes at n = 500 (K), from the component benchmarks of the same
+    run: the solver, RCME's instantiation with and without its fit to the sample, and scoring
+    at the number of points each method evaluates per hypothesis (the call's counter)."""
+    names = ("solver/8-point", "solver/RCME-instantiation(8-point,fit5,covariance)",
+             "solver/RCME-instantiation(8-point,fit0,covariance)", "score-per-point/count",
+             "score-per-point/RCME")
+    standard_key, rcme_key = [(m, "K", 500, 1000, "exact") for m in ("Standard", "RCME")]
+    if any(name not in components for name in names) or rcme_key not in counters:
+        return
+    solver, fitted, unfitted, count, entropy = (components[name] for name in names)
+    rcme_points = counters[rcme_key].get("pointsPerHypothesis", 500)
+    standard_points = counters.get(standard_key, {}).get("pointsPerHypothesis", 500)
+    print("\nPer-hypothesis stages at n = 500 (CPU us, component benchmarks of this run):")
+    print(f"         Standard: 8-point {solver / 1e3:.2f} + inlier count "
+          f"{standard_points:.0f} pts x {count:.1f} ns = {(solver + standard_points * count) / 1e3:.2f}")
+    print(f"         RCME: 8-point, E, motion and covariance {unfitted / 1e3:.2f} + fit to the "
+          f"sample {(fitted - unfitted) / 1e3:.2f} + entropy scoring {rcme_points:.0f} pts "
+          f"x {entropy:.1f} ns = {(fitted + rcme_points * entropy) / 1e3:.2f}")
 
 
 def main():
@@ -90,7 +119,7 @@ def main():
     else:
         with open(args.json) as f:
             report = json.load(f)
-    calls, parallel = collect(report)
+    calls, counters, parallel, components = collect(report)
     context = report.get("context", {})
     print(f"host {context.get('host_name', '?')}, {context.get('num_cpus', '?')} CPUs at "
           f"{context.get('mhz_per_cpu', '?')} MHz, load average "
@@ -120,8 +149,10 @@ def main():
     for model in ("K", "F"):
         key = ("RCME-sampleFit0", model, 500, 1000, "exact")
         if key in calls:
-            info(f"RCME with sampleFitIterations 0 / Standard ({model})",
+            outcome = "succeeds" if counters[key].get("success") else "FAILS on this scene"
+            info(f"RCME with sampleFitIterations 0 ({outcome}) / Standard ({model})",
                  calls[key] / get("Standard", model, 500, 1000))
+    print_stage_budget(components, counters)
 
     print("\nLinear in n (exactly N = 1000): time(n = 10000) / time(n = 500):")
     for method, model in (("Standard", "K"), ("RCME", "K"), ("Standard", "F")):

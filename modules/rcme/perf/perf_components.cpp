@@ -57,20 +57,35 @@ void runSolver(benchmark::State& state, std::unique_ptr<MinimalSolver> (*create)
     models.reserve(static_cast<size_t>(solver->maxSolutions()));
     size_t next = 0, solutions = 0;
     for (auto _ : state) {
-        solutions += static_cast<size_t>(
-            solver->estimate(problem.data, problem.samples[next], models));
+        solutions +=
+            static_cast<size_t>(solver->estimate(problem.data, problem.samples[next], models));
         next = (next + 1) % problem.samples.size();
     }
     state.counters["solutions"] =
         static_cast<double>(solutions) / static_cast<double>(state.iterations());
 }
 
-std::unique_ptr<MinimalSolver> eightPoint() { return createEightPointSolver(false); }
-std::unique_ptr<MinimalSolver> sevenPoint() { return createSevenPointSolver(false); }
-std::unique_ptr<MinimalSolver> fivePoint() { return createFivePointSolver(); }
+std::unique_ptr<MinimalSolver> eightPoint()
+{
+    return createEightPointSolver(false);
+}
+std::unique_ptr<MinimalSolver> sevenPoint()
+{
+    return createSevenPointSolver(false);
+}
+std::unique_ptr<MinimalSolver> fivePoint()
+{
+    return createFivePointSolver();
+}
 std::unique_ptr<MinimalSolver> rcmeEightPoint()
 {
     return createUncertainModelInstantiation(createEightPointSolver(true), 5);
+}
+
+// The fit's own cost is the difference of the two RCME lines (its covariance needs no fit).
+std::unique_ptr<MinimalSolver> rcmeEightPointWithoutFit()
+{
+    return createUncertainModelInstantiation(createEightPointSolver(true), 0);
 }
 
 BENCHMARK_CAPTURE(runSolver, 8point, eightPoint, false)->Name("solver/8-point");
@@ -78,6 +93,8 @@ BENCHMARK_CAPTURE(runSolver, 7point, sevenPoint, false)->Name("solver/7-point");
 BENCHMARK_CAPTURE(runSolver, 5point, fivePoint, true)->Name("solver/5-point");
 BENCHMARK_CAPTURE(runSolver, rcme, rcmeEightPoint, true)
     ->Name("solver/RCME-instantiation(8-point,fit5,covariance)");
+BENCHMARK_CAPTURE(runSolver, rcmeNoFit, rcmeEightPointWithoutFit, true)
+    ->Name("solver/RCME-instantiation(8-point,fit0,covariance)");
 
 enum ScorerKind
 {

@@ -54,57 +54,49 @@ const MethodName kMethods[] = {{cv::rcme::METHOD_STANDARD, "Standard"},
                                {cv::rcme::METHOD_MLESAC, "MLESAC"},
                                {cv::rcme::METHOD_COV_RANSAC, "CovRANSAC"}};
 
-void runCall(benchmark::State& state, cv::rcme::Method method, int n, int iterations, bool exact,
-             bool calibrated)
+// Times estimateRelativeMotion on the scene. The counters show the last report next to the time,
+// so that a faster call is visibly not a failed one; "ransacIterations" is named apart from Google
+// Benchmark's own "iterations" (the repetitions), which a counter would shadow.
+void timeCalls(benchmark::State& state, const cv::rcme::SyntheticScene& scene, bool calibrated,
+               const cv::rcme::Params& params)
 {
-    const cv::rcme::SyntheticScene scene = corridor(n);
-    const cv::rcme::Params params = callParams(method, iterations, exact);
     const cv::Mat K = calibrated ? scene.cameraMatrix : cv::Mat();
     cv::rcme::Report report;
     for (auto _ : state) {
         report = cv::rcme::estimateRelativeMotion(scene.points1, scene.points2, K, params);
         benchmark::DoNotOptimize(report.F.data);
     }
-    // Shown next to the time, so that a faster call is visibly not a failed one.
-    state.counters["iterations"] = report.iterations;
+    state.counters["ransacIterations"] = report.iterations;
+    state.counters["pointsPerHypothesis"] = report.pointsPerHypothesis;
     state.counters["inliers"] = report.inlierCount;
     state.counters["success"] = report.status == cv::rcme::STATUS_SUCCESS;
+}
+
+void runCall(benchmark::State& state, cv::rcme::Method method, int n, int iterations, bool exact,
+             bool calibrated)
+{
+    timeCalls(state, corridor(n), calibrated, callParams(method, iterations, exact));
 }
 
 // RCME as the paper states it: no Gauss-Newton fit of a hypothesis to its own sample
 // (Params::sampleFitIterations = 0), the like-for-like comparison with Standard's instantiation.
 void runRcmeWithoutSampleFit(benchmark::State& state, int n, int iterations, bool calibrated)
 {
-    const cv::rcme::SyntheticScene scene = corridor(n);
     cv::rcme::Params params = callParams(cv::rcme::METHOD_RCME, iterations, true);
     params.sampleFitIterations = 0;
-    const cv::Mat K = calibrated ? scene.cameraMatrix : cv::Mat();
-    cv::rcme::Report report;
-    for (auto _ : state) {
-        report = cv::rcme::estimateRelativeMotion(scene.points1, scene.points2, K, params);
-        benchmark::DoNotOptimize(report.F.data);
-    }
-    state.counters["inliers"] = report.inlierCount;
-    state.counters["success"] = report.status == cv::rcme::STATUS_SUCCESS;
+    timeCalls(state, corridor(n), calibrated, params);
 }
 
 // Params::isParallel on `threads` of OpenCV's threads; wall-clock time, the speed-up is the ratio
 // of the threads:1 and threads:2 lines.
 void runParallel(benchmark::State& state, cv::rcme::Method method, int n, int threads)
 {
-    const cv::rcme::SyntheticScene scene = corridor(n);
     cv::rcme::Params params = callParams(method, 1000, true);
     params.isParallel = true;
     const int previousThreads = cv::getNumThreads();
     cv::setNumThreads(threads);
-    cv::rcme::Report report;
-    for (auto _ : state) {
-        report = cv::rcme::estimateRelativeMotion(scene.points1, scene.points2,
-                                                  scene.cameraMatrix, params);
-        benchmark::DoNotOptimize(report.F.data);
-    }
+    timeCalls(state, corridor(n), true, params);
     cv::setNumThreads(previousThreads);
-    state.counters["inliers"] = report.inlierCount;
 }
 
 void runOpenCv(benchmark::State& state, int n, int iterations)
@@ -137,9 +129,9 @@ bool registerCalls()
                                                      : m.method == cv::rcme::METHOD_STANDARD;
                         if (!grid && n != 500)
                             continue;
-                        const std::string name = cv::format(
-                            "call/%s/%s/n:%d/N:%d/%s", m.name, calibrated ? "K" : "F", n, N,
-                            exact ? "exact" : "adaptive");
+                        const std::string name =
+                            cv::format("call/%s/%s/n:%d/N:%d/%s", m.name, calibrated ? "K" : "F", n,
+                                       N, exact ? "exact" : "adaptive");
                         benchmark::RegisterBenchmark(name.c_str(), runCall, m.method, n, N, exact,
                                                      calibrated)
                             ->Unit(benchmark::kMillisecond);
@@ -153,8 +145,7 @@ bool registerCalls()
     for (const MethodName& m : kMethods)
         for (int threads : {1, 2})
             benchmark::RegisterBenchmark(
-                cv::format("parallel/%s/K/n:2000/N:1000/exact/threads:%d", m.name, threads)
-                    .c_str(),
+                cv::format("parallel/%s/K/n:2000/N:1000/exact/threads:%d", m.name, threads).c_str(),
                 runParallel, m.method, 2000, threads)
                 ->Unit(benchmark::kMillisecond)
                 ->UseRealTime();

@@ -10,7 +10,7 @@
 #include "test_precomp.hpp"
 
 #if defined(__has_feature)
-#if __has_feature(address_sanitizer) || __has_feature(memory_sanitizer) ||                        \
+#if __has_feature(address_sanitizer) || __has_feature(memory_sanitizer) ||                         \
     __has_feature(thread_sanitizer)
 #define RCME_SANITIZED_BUILD 1
 #endif
@@ -103,8 +103,8 @@ long loopAllocations(const SyntheticScene& s, Params params, bool calibrated, in
 {
     params.exactIterations = true;
     params.maxIterations = iterations;
-    const TwoViewData data = makeTwoViewData(s.points1, s.points2,
-                                             calibrated ? s.cameraMatrix : Mat(), params);
+    const TwoViewData data =
+        makeTwoViewData(s.points1, s.points2, calibrated ? s.cameraMatrix : Mat(), params);
     EstimatorComponents components = createEstimator(params, data);
     CandidateSet candidates;
     RansacResult result;

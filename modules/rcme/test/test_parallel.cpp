@@ -105,7 +105,8 @@ TEST(Rcme_Parallel, failures_are_the_same)
         Params params;
         params.method = method;
         params.maxIterations = 150;
-        const Report sequential = estimateRelativeMotion(s.points1, s.points2, s.cameraMatrix, params);
+        const Report sequential =
+            estimateRelativeMotion(s.points1, s.points2, s.cameraMatrix, params);
         EXPECT_NE(sequential.status, STATUS_SUCCESS);
         params.isParallel = true;
         cv::setNumThreads(2);

@@ -84,7 +84,10 @@ public:
         score.isCandidate = score.isCandidate && isStillCandidate(score);
     }
 
-    std::unique_ptr<Scorer> clone() const override { return std::make_unique<EntropyScorer>(*this); }
+    std::unique_ptr<Scorer> clone() const override
+    {
+        return std::make_unique<EntropyScorer>(*this);
+    }
 
     bool isStillCandidate(const Score& score) const override
     {

@@ -24,8 +24,7 @@ ResidualUncertainty::ResidualUncertainty(const Model& model, double sigma)
     // a^T D Sigma D^T a = |D^1/2 L^T P directions a|^2: P products per point instead of 81.
     const Eigen::LDLT<Eigen::Matrix<double, 7, 7>> ldlt(model.covariance);
     Eigen::Matrix<double, 7, 9> permuted = ldlt.transpositionsP() * directions;
-    factor_ = ldlt.vectorD().cwiseMax(0.0).cwiseSqrt().asDiagonal() *
-              (ldlt.matrixU() * permuted);
+    factor_ = ldlt.vectorD().cwiseMax(0.0).cwiseSqrt().asDiagonal() * (ldlt.matrixU() * permuted);
 }
 
 void ResidualUncertainty::evaluate(const Eigen::Vector2d& x1, const Eigen::Vector2d& x2,

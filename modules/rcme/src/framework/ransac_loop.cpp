@@ -263,8 +263,8 @@ private:
     std::vector<Lane> lanes_;
     std::vector<IterationSlot> slots_;
     std::vector<ModelVerifier*> sequentialVerifiers_; //!< from the first sequential one on
-    std::vector<uchar> localInliers_; //!< local optimisation's buffer, reused
-    long long pointsEvaluated_ = 0;   //!< residuals evaluated by verification and scoring
+    std::vector<uchar> localInliers_;                 //!< local optimisation's buffer, reused
+    long long pointsEvaluated_ = 0; //!< residuals evaluated by verification and scoring
 };
 
 } // namespace

@@ -38,8 +38,7 @@ class CandidateSet;
 
 /** runRansac's hypothesis loop alone (on several threads when components.parallel): adds the
 candidates to `candidates`, sets result.iterations, degenerateSamples, hypotheses and
-pointsPerHypothesis. Needs at least
-the solver's sample size of points. */
+pointsPerHypothesis. Needs at least the solver's sample size of points. */
 void searchHypotheses(const TwoViewData& data, EstimatorComponents& components,
                       CandidateSet& candidates, RansacResult& result);
 

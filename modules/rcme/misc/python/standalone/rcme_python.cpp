@@ -514,9 +514,10 @@ PYBIND11_MODULE(rcme, m)
                               "Parameters of the robust estimators, shaped like cv2.UsacParams.");
     params.def(py::init<>(), "Params() -> <rcme.Params object>\n.   Every field at its default.");
     // A static factory rather than a constructor, as in cv2.rcme: see params.hpp.
-    const char* docFromUsac = "fromUsacParams(usacParams) -> retval\n"
-                              ".   Params with confidence, maxIterations, randomGeneratorState, "
-                              "threshold, isParallel and sampler carried over from a cv2.UsacParams.";
+    const char* docFromUsac =
+        "fromUsacParams(usacParams) -> retval\n"
+        ".   Params with confidence, maxIterations, randomGeneratorState, "
+        "threshold, isParallel and sampler carried over from a cv2.UsacParams.";
     params.def_static("fromUsacParams", &paramsFromUsac, py::arg("usacParams"), docFromUsac);
     m.def("Params_fromUsacParams", &paramsFromUsac, py::arg("usacParams"), docFromUsac);
     Fields<Params> paramsFields(params);
