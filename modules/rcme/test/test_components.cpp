@@ -12,6 +12,7 @@
 #include "framework/components.hpp"
 #include "geometry/epipolar.hpp"
 #include "geometry/motion_parameterization.hpp"
+#include "geometry/statistics.hpp"
 #include "test_internal_helpers.hpp"
 
 #include <opencv2/core/eigen.hpp>
@@ -259,6 +260,18 @@ TEST(Rcme_Cheirality, picks_the_true_decomposition)
             EXPECT_LT((t - tgt).norm(), 1e-9);
         }
     }
+}
+
+TEST(Rcme_Statistics, binomial_tail_bound_small_and_large_samples)
+{
+    // Exact values (summed with Python's integer binomial coefficients): P(X >= 16) = 0.040 and
+    // P(X >= 15) = 0.073 for Binomial(100, 0.1).
+    EXPECT_EQ(binomialTailBound(100, 0.1, 0.05), 16);
+    EXPECT_EQ(binomialTailBound(100, 0.0, 0.05), 1);
+    EXPECT_EQ(binomialTailBound(100, 1.0, 0.05), 101);
+    // Large samples, where (1 - p)^n underflows: mean + 3.9 standard deviations.
+    EXPECT_EQ(binomialTailBound(100000, 0.01, 5e-5), 1126);
+    EXPECT_EQ(binomialTailBound(1000000, 0.01, 5e-5), 10390);
 }
 
 } // namespace

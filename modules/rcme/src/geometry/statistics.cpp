@@ -54,14 +54,16 @@ int binomialTailBound(int trials, double p, double level)
 {
     if (p >= 1.0)
         return trials + 1;
-    const double ratio = p / (1.0 - p);
-    double pmf = std::pow(1.0 - p, trials); // P(X = 0)
+    // The probabilities in logarithms: P(X = 0) = (1 - p)^trials underflows to zero for large
+    // samples (p = 0.01 and 10^5 points), which would make every support "chance".
+    const double logRatio = std::log(p) - std::log1p(-p);
+    double logPmf = trials * std::log1p(-p); // log P(X = 0)
     double cdf = 0;
     for (int k = 0; k <= trials; ++k) {
         if (1.0 - cdf <= level) // 1 - cdf = P(X >= k)
             return k;
-        cdf += pmf;
-        pmf *= ratio * (trials - k) / (k + 1.0);
+        cdf += std::exp(logPmf);
+        logPmf += logRatio + std::log((trials - k) / (k + 1.0));
     }
     return trials + 1;
 }
