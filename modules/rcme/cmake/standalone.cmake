@@ -9,6 +9,39 @@ set(CMAKE_CXX_STANDARD_REQUIRED ON)
 set(CMAKE_CXX_EXTENSIONS OFF)
 set(CMAKE_POSITION_INDEPENDENT_CODE ON)
 
+# Sanitizer builds (test/hardening/): "address" is ASan + UBSan, any report fatal; "thread" is
+# TSan. The flags are set in the parent scope too, so that the samples and their tests are
+# instrumented like the library and the C++ tests. The Python module is not built then (an
+# instrumented extension cannot be loaded by an uninstrumented interpreter), nor the install
+# consumer test (a separate, uninstrumented project).
+set(RCME_SANITIZE "" CACHE STRING "Sanitizers for the library and the C++ tests: address, thread or empty")
+set_property(CACHE RCME_SANITIZE PROPERTY STRINGS "" address thread)
+option(RCME_FUZZ "Build the libFuzzer target rcme_fuzz_public_api (clang, with RCME_SANITIZE=address)" OFF)
+if(RCME_SANITIZE)
+  if(RCME_SANITIZE STREQUAL "address")
+    set(_rcme_sanitize_flags "-fsanitize=address,undefined -fno-sanitize-recover=all")
+  elseif(RCME_SANITIZE STREQUAL "thread")
+    set(_rcme_sanitize_flags "-fsanitize=thread")
+  else()
+    message(FATAL_ERROR "RCME_SANITIZE must be address, thread or empty, got '${RCME_SANITIZE}'")
+  endif()
+  # Coverage instrumentation for libFuzzer, without libFuzzer's main (only its target has one).
+  if(RCME_FUZZ)
+    if(NOT CMAKE_CXX_COMPILER_ID STREQUAL "Clang" OR NOT RCME_SANITIZE STREQUAL "address")
+      message(FATAL_ERROR "RCME_FUZZ needs clang (CMAKE_CXX_COMPILER=clang++) and RCME_SANITIZE=address")
+    endif()
+    string(APPEND _rcme_sanitize_flags " -fsanitize=fuzzer-no-link")
+  endif()
+  string(APPEND _rcme_sanitize_flags " -fno-omit-frame-pointer -g")
+  foreach(_var CMAKE_CXX_FLAGS CMAKE_EXE_LINKER_FLAGS CMAKE_SHARED_LINKER_FLAGS)
+    set(${_var} "${${_var}} ${_rcme_sanitize_flags}")
+    set(${_var} "${${_var}}" PARENT_SCOPE)
+  endforeach()
+  set(RCME_BUILD_PYTHON OFF)
+elseif(RCME_FUZZ)
+  message(FATAL_ERROR "RCME_FUZZ needs RCME_SANITIZE=address")
+endif()
+
 set(RCME_OPENCV_COMPONENTS core imgproc features2d calib3d)
 find_package(OpenCV 4.6 REQUIRED COMPONENTS ${RCME_OPENCV_COMPONENTS})
 find_package(Eigen3 3.3 REQUIRED NO_MODULE)
@@ -74,6 +107,10 @@ if(RCME_BUILD_TESTS)
     opencv_imgcodecs)
   include(GoogleTest)
   gtest_discover_tests(opencv_test_rcme DISCOVERY_TIMEOUT 120)
+endif()
+
+if(RCME_FUZZ)
+  add_subdirectory("${RCME_MODULE_DIR}/test/fuzz" "${CMAKE_BINARY_DIR}/fuzz")
 endif()
 
 if(RCME_BUILD_PYTHON)

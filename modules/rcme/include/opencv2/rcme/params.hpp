@@ -17,8 +17,12 @@ namespace rcme {
 
 The values do not collide with OpenCV's own method flags, so they can be passed as the `method`
 argument of the drop-in overloads (where cv::FM_RANSAC and cv::RANSAC select #METHOD_STANDARD).
+
+The enums of the module have `int` as their fixed underlying type, so that any integer (from
+Python, a file, a cast) is a value the argument checks can reject with a message; without it, a
+value outside an enum's range would be undefined behaviour before any check could run.
 */
-enum Method
+enum Method : int
 {
     METHOD_RCME = 1024,  //!< model quality aware RANSAC @cite Yeh2021RCME
     METHOD_PRCME = 1025, //!< RCME without the model-sample consistency test
@@ -29,14 +33,14 @@ enum Method
 };
 
 //! How minimal samples are drawn.
-enum SamplerKind
+enum SamplerKind : int
 {
     SAMPLER_UNIFORM = 0, //!< every subset equally likely @cite Fischler1981
     SAMPLER_PROSAC = 1   //!< progressive sampling by match quality @cite Chum2005PROSAC
 };
 
 //! Which minimal solver instantiates the hypotheses.
-enum MinimalSolverKind
+enum MinimalSolverKind : int
 {
     SOLVER_EIGHT_POINT = 0, //!< normalized 8-point @cite Hartley2004 (over-parameterized)
     SOLVER_SEVEN_POINT = 1, //!< 7-point, up to three F (exact)
@@ -48,7 +52,7 @@ enum MinimalSolverKind
 Only #STATUS_SUCCESS comes with a model; with any other status the returned matrices are empty
 and the mask is all zeros.
 */
-enum Status
+enum Status : int
 {
     STATUS_SUCCESS = 0, //!< a model was found and is returned
     /** no hypothesis passed the method's acceptance tests: for RCME the inlier-set quality and

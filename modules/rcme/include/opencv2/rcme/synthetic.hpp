@@ -13,7 +13,7 @@ namespace rcme {
 //! @{
 
 //! Kind of synthetic two-view scene.
-enum SceneKind
+enum SceneKind : int
 {
     /** the paper's corridor (Sec. V-B): five walls (left, right, floor, ceiling, far end), two
     free-flying cameras inside it; hard for inlier counting because the walls are planes */
