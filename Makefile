@@ -6,21 +6,38 @@ BUILD_DIR ?= build
 JOBS ?= 2
 DEB_PACKAGES := build-essential cmake ninja-build ccache pkg-config libopencv-dev libeigen3-dev \
 	libgtest-dev pybind11-dev libbenchmark-dev python3-dev python3-numpy python3-opencv \
-	python3-pytest dpkg-dev zlib1g-dev libpng-dev libjpeg-dev
+	python3-pytest dpkg-dev zlib1g-dev libpng-dev libjpeg-dev clang libclang-rt-14-dev
 # INTREE=0 skips the in-tree step of make test (OpenCV built from source with the module, see
 # test/opencv_intree/build_opencv_with_rcme.sh; dpkg-dev and the zlib/png/jpeg headers are for it).
 INTREE ?= 1
+# Length of the fuzzing run of make test / make fuzz, seconds (doc/hardening.md; clang and
+# libclang-rt-14-dev are for the fuzzer: libFuzzer and clang's ASan runtime).
+FUZZ_SECONDS ?= 60
 
-.PHONY: demo test test-intree build configure deps
+.PHONY: demo test test-intree sanitize sanitize-thread fuzz build configure deps
 
 demo: build
 	$(BUILD_DIR)/bin/rcme_two_view_demo --method rcme --out $(BUILD_DIR)/demo/two_view_demo.png
 
 test: build
 	cd $(BUILD_DIR) && ctest --output-on-failure -j$(JOBS)
+	JOBS=$(JOBS) test/hardening/run_sanitizers.sh
+	JOBS=$(JOBS) test/hardening/run_fuzzer.sh $(FUZZ_SECONDS)
 ifneq ($(INTREE),0)
 	test/opencv_intree/build_opencv_with_rcme.sh --jobs $(JOBS)
 endif
+
+# ASan + UBSan build (build-sanitize/) and every C++ test under it.
+sanitize: deps
+	JOBS=$(JOBS) test/hardening/run_sanitizers.sh
+
+# TSan build (build-tsan/) and the concurrency tests under it; not part of make test.
+sanitize-thread: deps
+	JOBS=$(JOBS) test/hardening/run_sanitizers.sh --tsan
+
+# libFuzzer on the public API (build-fuzz/) for FUZZ_SECONDS.
+fuzz: deps
+	JOBS=$(JOBS) test/hardening/run_fuzzer.sh $(FUZZ_SECONDS)
 
 test-intree: deps
 	test/opencv_intree/build_opencv_with_rcme.sh --jobs $(JOBS)

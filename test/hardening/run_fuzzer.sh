@@ -1,0 +1,53 @@
+#!/usr/bin/env bash
+# Fuzz job (doc/hardening.md): builds the libFuzzer target rcme_fuzz_public_api with Debian's
+# clang (libFuzzer + ASan + UBSan, RCME_FUZZ=ON) in build-fuzz/, writes the seed corpus with
+# rcme_fuzz_seeds and fuzzes for a bounded time. A crash, a sanitizer report, an exception other
+# than cv::Exception, a broken output contract or an input slower than -timeout fails the script;
+# libFuzzer then leaves the input in build-fuzz/fuzz/ (crash-*, timeout-*) to replay with
+# `build-fuzz/bin/rcme_fuzz_public_api <file>`.
+#
+#   test/hardening/run_fuzzer.sh [SECONDS]     default 60 (CI: make fuzz FUZZ_SECONDS=60)
+# Environment: JOBS (build, default 2), FUZZ_BUILD_DIR (default build-fuzz).
+set -euo pipefail
+cd "$(dirname "$0")/../.."
+
+seconds=${1:-60}
+case "$seconds" in
+'' | *[!0-9]*)
+    echo "usage: $0 [SECONDS]" >&2
+    exit 2
+    ;;
+esac
+build_dir=${FUZZ_BUILD_DIR:-build-fuzz}
+jobs=${JOBS:-2}
+start=$(date +%s)
+
+cmake -S . -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+    -DCMAKE_CXX_COMPILER=clang++ -DRCME_SANITIZE=address -DRCME_FUZZ=ON \
+    -DRCME_BUILD_TESTS=OFF -DRCME_BUILD_PYTHON=OFF -DRCME_BUILD_SAMPLES=OFF -DRCME_BUILD_PERF=OFF
+nice cmake --build "$build_dir" -j"$jobs" --target rcme_fuzz_public_api rcme_fuzz_seeds
+built=$(date +%s)
+
+fuzz_dir="$build_dir/fuzz"
+seeds="$fuzz_dir/seeds"
+corpus="$fuzz_dir/corpus" # grows across local runs; CI starts from the seeds only
+rm -rf "$seeds"
+mkdir -p "$seeds" "$corpus"
+"$build_dir/bin/rcme_fuzz_seeds" "$seeds"
+
+export ASAN_OPTIONS="halt_on_error=1:detect_leaks=1${ASAN_OPTIONS:+:$ASAN_OPTIONS}"
+export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1${UBSAN_OPTIONS:+:$UBSAN_OPTIONS}"
+log="$fuzz_dir/last_run.log"
+# -timeout: one input slower than 10 s is reported as a hang (an execution takes milliseconds).
+# -max_len: the largest input the format uses (200 points per view).
+status=0
+"$build_dir/bin/rcme_fuzz_public_api" -max_total_time="$seconds" -timeout=10 \
+    -rss_limit_mb=2048 -max_len=4096 -print_final_stats=1 -artifact_prefix="$fuzz_dir/" \
+    "$corpus" "$seeds" >"$log" 2>&1 || status=$?
+grep -E "^(INFO: Seed|#[0-9]+ +(INITED|DONE))|stat::number_of_executed_units|stat::average_exec_per_sec|stat::peak_rss_mb" "$log" || true
+if [ "$status" -ne 0 ]; then
+    tail -n 60 "$log"
+    echo "run_fuzzer.sh: FAILED (exit $status), full log in $log" >&2
+    exit "$status"
+fi
+echo "run_fuzzer.sh: build $((built - start)) s, fuzzing ${seconds} s, no finding (log: $log)"
