@@ -199,9 +199,12 @@ TEST(Rcme_Properties, million_points_complete_with_memory_proportional_to_n)
         EXPECT_GT(report.inlierCount, sizes[k] / 2);
         EXPECT_LT(compareMotion(report.R, report.t, scene.R, scene.t).rotationDeg, 0.1);
     }
-    if (!kMeasureMemory || !measured[0] || !measured[1])
-        GTEST_SKIP() << "completed; peak memory not measured (sanitizer build or no "
-                        "/proc/self/clear_refs)";
+    // (OpenCV 4.6's ts has no GTEST_SKIP: the test passes on completion alone there.)
+    if (!kMeasureMemory || !measured[0] || !measured[1]) {
+        std::printf("completed; peak memory not measured (sanitizer build or no "
+                    "/proc/self/clear_refs)\n");
+        return;
+    }
     const double bytesPerPoint = growth[1] / sizes[1];
     std::printf("peak growth: %.1f MB for 1e5 points, %.1f MB for 1e6 points (%.0f B/point)\n",
                 growth[0] / 1e6, growth[1] / 1e6, bytesPerPoint);
