@@ -22,7 +22,9 @@ double lowerRegularizedGamma(double a, double x)
         term *= x / (a + n);
         sum += term;
     }
-    return std::min(1.0, sum * std::exp(-x + a * std::log(x) - std::lgamma(a)));
+    // tgamma, not lgamma: lgamma writes the global signgam, a data race when several threads
+    // estimate at once (found by TSan). a = dof / 2 is small here, far from tgamma's overflow.
+    return std::min(1.0, sum * std::exp(-x + a * std::log(x)) / std::tgamma(a));
 }
 
 } // namespace
