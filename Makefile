@@ -22,6 +22,7 @@ demo: build
 test: build
 	cd $(BUILD_DIR) && ctest --output-on-failure -j$(JOBS)
 	JOBS=$(JOBS) test/hardening/run_sanitizers.sh
+	JOBS=$(JOBS) test/hardening/run_sanitizers.sh --tsan
 	JOBS=$(JOBS) test/hardening/run_fuzzer.sh $(FUZZ_SECONDS)
 ifneq ($(INTREE),0)
 	test/opencv_intree/build_opencv_with_rcme.sh --jobs $(JOBS)
@@ -31,7 +32,7 @@ endif
 sanitize: deps
 	JOBS=$(JOBS) test/hardening/run_sanitizers.sh
 
-# TSan build (build-tsan/) and the concurrency tests under it; not part of make test.
+# TSan build (build-tsan/) and the concurrency tests under it.
 sanitize-thread: deps
 	JOBS=$(JOBS) test/hardening/run_sanitizers.sh --tsan
 
