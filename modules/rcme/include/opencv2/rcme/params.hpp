@@ -22,7 +22,10 @@ The enums of the module have `int` as their fixed underlying type, so that any i
 Python, a file, a cast) is a value the argument checks can reject with a message; without it, a
 value outside an enum's range would be undefined behaviour before any check could run.
 */
-enum Method : int
+enum Method
+#ifndef OPENCV_BINDING_PARSER // OpenCV 4.6's binding generator cannot read an enum base
+    : int
+#endif
 {
     METHOD_RCME = 1024,  //!< model quality aware RANSAC @cite Yeh2021RCME
     METHOD_PRCME = 1025, //!< RCME without the model-sample consistency test
@@ -33,14 +36,20 @@ enum Method : int
 };
 
 //! How minimal samples are drawn.
-enum SamplerKind : int
+enum SamplerKind
+#ifndef OPENCV_BINDING_PARSER // OpenCV 4.6's binding generator cannot read an enum base
+    : int
+#endif
 {
     SAMPLER_UNIFORM = 0, //!< every subset equally likely @cite Fischler1981
     SAMPLER_PROSAC = 1   //!< progressive sampling by match quality @cite Chum2005PROSAC
 };
 
 //! Which minimal solver instantiates the hypotheses.
-enum MinimalSolverKind : int
+enum MinimalSolverKind
+#ifndef OPENCV_BINDING_PARSER // OpenCV 4.6's binding generator cannot read an enum base
+    : int
+#endif
 {
     SOLVER_EIGHT_POINT = 0, //!< normalized 8-point @cite Hartley2004 (over-parameterized)
     SOLVER_SEVEN_POINT = 1, //!< 7-point, up to three F (exact)
@@ -52,7 +61,10 @@ enum MinimalSolverKind : int
 Only #STATUS_SUCCESS comes with a model; with any other status the returned matrices are empty
 and the mask is all zeros.
 */
-enum Status : int
+enum Status
+#ifndef OPENCV_BINDING_PARSER // OpenCV 4.6's binding generator cannot read an enum base
+    : int
+#endif
 {
     STATUS_SUCCESS = 0, //!< a model was found and is returned
     /** no hypothesis passed the method's acceptance tests: for RCME the inlier-set quality and

@@ -13,7 +13,10 @@ namespace rcme {
 //! @{
 
 //! Kind of synthetic two-view scene.
-enum SceneKind : int
+enum SceneKind
+#ifndef OPENCV_BINDING_PARSER // OpenCV 4.6's binding generator cannot read an enum base
+    : int
+#endif
 {
     /** the paper's corridor (Sec. V-B): five walls (left, right, floor, ceiling, far end), two
     free-flying cameras inside it; hard for inlier counting because the walls are planes */
