@@ -110,7 +110,7 @@ if(RCME_BUILD_TESTS)
 endif()
 
 if(RCME_FUZZ)
-  add_subdirectory("${RCME_MODULE_DIR}/test/fuzz" "${CMAKE_BINARY_DIR}/fuzz")
+  add_subdirectory("${RCME_MODULE_DIR}/misc/fuzz" "${CMAKE_BINARY_DIR}/fuzz")
 endif()
 
 if(RCME_BUILD_PYTHON)
