@@ -14,6 +14,17 @@
 
 namespace opencv_test {
 using namespace cv::rcme;
+
+//! The well-conditioned generic scene of generateScene, shared by the tests that need one.
+inline SyntheticScene genericTestScene(int seed, double inlierRatio = 0.5, int numPoints = 500)
+{
+    SceneParams sp;
+    sp.kind = SCENE_GENERIC;
+    sp.seed = seed;
+    sp.inlierRatio = inlierRatio;
+    sp.numPoints = numPoints;
+    return generateScene(sp);
+}
 } // namespace opencv_test
 
 #endif // OPENCV_RCME_TEST_PRECOMP_HPP

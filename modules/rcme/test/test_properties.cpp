@@ -17,16 +17,6 @@
 namespace opencv_test {
 namespace {
 
-SyntheticScene propertyScene(int seed, int n = 300, double inlierRatio = 0.7)
-{
-    SceneParams sp;
-    sp.kind = SCENE_GENERIC;
-    sp.seed = seed;
-    sp.numPoints = n;
-    sp.inlierRatio = inlierRatio;
-    return generateScene(sp);
-}
-
 Params propertyParams(Method method, int seed)
 {
     Params params;
@@ -54,7 +44,7 @@ TEST(Rcme_Properties, swapping_the_views_transposes_f)
     for (const Method method : kMethods)
         for (int seed = 0; seed < 3; ++seed) {
             SCOPED_TRACE(cv::format("method %d, seed %d", method, seed));
-            const SyntheticScene scene = propertyScene(seed);
+            const SyntheticScene scene = genericTestScene(seed, 0.7, 300);
             const Params params = propertyParams(method, seed);
             Mat mask12, mask21;
             Status s12, s21;
@@ -76,7 +66,7 @@ TEST(Rcme_Properties, swapping_the_views_inverts_the_motion)
     for (const Method method : kMethods)
         for (int seed = 0; seed < 3; ++seed) {
             SCOPED_TRACE(cv::format("method %d, seed %d", method, seed));
-            const SyntheticScene scene = propertyScene(10 + seed);
+            const SyntheticScene scene = genericTestScene(10 + seed, 0.7, 300);
             const Params params = propertyParams(method, seed);
             Mat E12, R12, t12, E21, R21, t21, mask;
             Status s12, s21;
@@ -103,7 +93,7 @@ TEST(Rcme_Properties, pixel_unit_does_not_change_the_motion)
     const double factors[] = {0.25, 3.7, 16.0};
     for (const Method method : {METHOD_STANDARD, METHOD_RCME, METHOD_PRCME})
         for (int seed = 0; seed < 2; ++seed) {
-            const SyntheticScene scene = propertyScene(20 + seed);
+            const SyntheticScene scene = genericTestScene(20 + seed, 0.7, 300);
             Params params = propertyParams(method, seed);
             Mat E, R, t, mask;
             Status status;
@@ -186,7 +176,7 @@ TEST(Rcme_Properties, million_points_complete_with_memory_proportional_to_n)
     double growth[2] = {0, 0};
     bool measured[2] = {false, false};
     for (int k = 0; k < 2; ++k) {
-        const SyntheticScene scene = propertyScene(30, sizes[k], 0.9);
+        const SyntheticScene scene = genericTestScene(30, 0.9, sizes[k]);
         Report report;
         const auto run = [&] {
             report =

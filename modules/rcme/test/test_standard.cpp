@@ -13,16 +13,6 @@
 namespace opencv_test {
 namespace {
 
-SyntheticScene genericScene(int seed, double inlierRatio = 0.5, int n = 500)
-{
-    SceneParams sp;
-    sp.kind = SCENE_GENERIC;
-    sp.seed = seed;
-    sp.inlierRatio = inlierRatio;
-    sp.numPoints = n;
-    return generateScene(sp);
-}
-
 Params standardParams(int seed = 0)
 {
     Params params;
@@ -46,7 +36,7 @@ TEST(Rcme_Standard, recovers_pose_on_well_conditioned_scenes)
     std::vector<double> rotationErrors, translationErrors;
     int failures = 0;
     for (int seed = 0; seed < 100; ++seed) {
-        const SyntheticScene scene = genericScene(seed);
+        const SyntheticScene scene = genericTestScene(seed);
         Mat E, R, t, mask;
         Status status;
         recoverPose(scene.points1, scene.points2, scene.cameraMatrix, E, R, t, standardParams(seed),
@@ -68,7 +58,7 @@ TEST(Rcme_Standard, recovers_pose_on_well_conditioned_scenes)
 
 TEST(Rcme_Standard, recover_pose_follows_opencv_conventions)
 {
-    const SyntheticScene scene = genericScene(3);
+    const SyntheticScene scene = genericTestScene(3);
     Mat E, R, t, mask, covariance;
     Status status;
     const int count = recoverPose(scene.points1, scene.points2, scene.cameraMatrix, E, R, t,
@@ -102,7 +92,7 @@ TEST(Rcme_Standard, recover_pose_follows_opencv_conventions)
 
 TEST(Rcme_Standard, finds_the_true_inliers)
 {
-    const SyntheticScene scene = genericScene(5, 0.4, 400);
+    const SyntheticScene scene = genericTestScene(5, 0.4, 400);
     Mat mask;
     Status status;
     const Mat F = findFundamentalMat(scene.points1, scene.points2, standardParams(), mask, status);
@@ -124,7 +114,7 @@ TEST(Rcme_Standard, finds_the_true_inliers)
 
 TEST(Rcme_Standard, same_seed_same_result_and_seed_matters)
 {
-    const SyntheticScene scene = genericScene(9, 0.6);
+    const SyntheticScene scene = genericTestScene(9, 0.6);
     Params params = standardParams(42);
     params.exactIterations = true;
     params.maxIterations = 200;
@@ -141,7 +131,7 @@ TEST(Rcme_Standard, same_seed_same_result_and_seed_matters)
 
 TEST(Rcme_Standard, exact_iterations_mode_runs_exactly_n)
 {
-    const SyntheticScene scene = genericScene(2, 0.8);
+    const SyntheticScene scene = genericTestScene(2, 0.8);
     Params params = standardParams();
     params.maxIterations = 300;
     const Report adaptive = estimateRelativeMotion(scene.points1, scene.points2, noArray(), params);
@@ -153,7 +143,7 @@ TEST(Rcme_Standard, exact_iterations_mode_runs_exactly_n)
 
 TEST(Rcme_Standard, report_holds_everything)
 {
-    const SyntheticScene scene = genericScene(4);
+    const SyntheticScene scene = genericTestScene(4);
     const Report r =
         estimateRelativeMotion(scene.points1, scene.points2, scene.cameraMatrix, standardParams());
     ASSERT_EQ(r.status, STATUS_SUCCESS);
@@ -177,7 +167,7 @@ TEST(Rcme_Standard, report_holds_everything)
 
 TEST(Rcme_Standard, calibrated_fundamental_has_equal_singular_values)
 {
-    const SyntheticScene scene = genericScene(6);
+    const SyntheticScene scene = genericTestScene(6);
     Mat mask;
     Status status;
     const Mat F = findFundamentalMat(scene.points1, scene.points2, scene.cameraMatrix,
@@ -195,7 +185,7 @@ TEST(Rcme_Standard, threads_give_the_serial_results)
     std::vector<SyntheticScene> scenes;
     std::vector<Report> serial;
     for (int i = 0; i < 4; ++i) {
-        scenes.push_back(genericScene(20 + i));
+        scenes.push_back(genericTestScene(20 + i));
         serial.push_back(estimateRelativeMotion(scenes[i].points1, scenes[i].points2,
                                                 scenes[i].cameraMatrix, standardParams(i)));
     }
@@ -217,7 +207,7 @@ TEST(Rcme_Standard, threads_give_the_serial_results)
 
 TEST(Rcme_Standard, accepts_opencv_point_layouts)
 {
-    const SyntheticScene scene = genericScene(8);
+    const SyntheticScene scene = genericTestScene(8);
     const Params params = standardParams();
     Mat reference;
     Status status;
@@ -256,7 +246,7 @@ TEST(Rcme_Standard, accepts_opencv_point_layouts)
 
 TEST(Rcme_Standard, drop_in_signatures_match_opencv_usage)
 {
-    const SyntheticScene scene = genericScene(10);
+    const SyntheticScene scene = genericTestScene(10);
     Mat mask;
     // Same call as cv::findFundamentalMat(p1, p2, FM_RANSAC, 3, 0.99, 1000, mask).
     const Mat F = cv::rcme::findFundamentalMat(scene.points1, scene.points2, FM_RANSAC, 3.0, 0.99,
@@ -315,7 +305,7 @@ TEST(Rcme_Standard, local_optimization_gathers_more_inliers)
     // candidates recover more of the true inliers (measured: mean recall 0.49 -> 0.57).
     double recall[2] = {0, 0};
     for (int seed = 0; seed < 20; ++seed) {
-        const SyntheticScene scene = genericScene(seed, 0.4);
+        const SyntheticScene scene = genericTestScene(seed, 0.4);
         for (int lo = 0; lo < 2; ++lo) {
             Params params = standardParams(seed);
             params.refine = false;
