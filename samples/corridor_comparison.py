@@ -45,6 +45,10 @@ def main():
     ap.add_argument("--inlier-ratio", type=float, default=0.5)
     ap.add_argument("--sigma", type=float, default=1.0)
     ap.add_argument("--iterations", type=int, default=1000)
+    ap.add_argument("--corridor-width", type=float, default=None,
+                    help="metres between the side walls (default: SceneParams')")
+    ap.add_argument("--corridor-height", type=float, default=None,
+                    help="metres between floor and ceiling (default: SceneParams')")
     args = ap.parse_args()
 
     threshold = Budget(args.iterations, args.sigma, 0).threshold
@@ -68,7 +72,12 @@ def main():
         errors.append((m.dq, m.dt, m.rotationDeg, m.translationDeg))
 
     for seed in range(args.seeds):
-        s = rcme.generateScene(scene_params(args.points, args.inlier_ratio, args.sigma, seed))
+        sp = scene_params(args.points, args.inlier_ratio, args.sigma, seed)
+        if args.corridor_width is not None:
+            sp.corridorWidth = args.corridor_width
+        if args.corridor_height is not None:
+            sp.corridorHeight = args.corridor_height
+        s = rcme.generateScene(sp)
         K, p1, p2 = s.cameraMatrix, s.points1, s.points2
         params = rcme_params(rcme.METHOD_STANDARD, Budget(args.iterations, args.sigma, seed))
 
@@ -99,9 +108,9 @@ def main():
         record("OpenCV FM_RANSAC, F", *(motion_from_f(F, K, p1, p2) if ok else (None, None)), s,
                seconds, None)
 
-    print("corridor: %d seeds, n = %d, inlier ratio %.2f, sigma %.2f px, exactly N = %d, "
-          "threshold %.2f px" % (args.seeds, args.points, args.inlier_ratio, args.sigma,
-                                 args.iterations, threshold))
+    print("corridor %g x %g m: %d seeds, n = %d, inlier ratio %.2f, sigma %.2f px, exactly N = %d, "
+          "threshold %.2f px" % (sp.corridorWidth, sp.corridorHeight, args.seeds, args.points,
+                                 args.inlier_ratio, args.sigma, args.iterations, threshold))
     print("| method | mean dq (std) | mean dt (std) | median rot. deg | median transl. deg "
           "| PQI | degenerate | other failure | median ms | points / hypothesis |")
     print("|---|---|---|---|---|---|---|---|---|---|")

@@ -6,6 +6,9 @@
 
 #include "framework/components.hpp"
 
+#include <algorithm>
+#include <limits>
+
 namespace cv {
 namespace rcme {
 namespace detail {
@@ -38,11 +41,12 @@ private:
 };
 
 /** Calls visit(i, distanceSquared, variance) for every point that is an inlier of `model` by
-its propagated uncertainty, d^2 <= bound * v (the paper's eq. 4, Cov-RANSAC's test); for no
-point when the model has no uncertainty. */
+its propagated uncertainty, d^2 <= bound * min(v, maxVariance) (the paper's eq. 4, Cov-RANSAC's
+test); for no point when the model has no uncertainty. */
 template <class Visit>
 void forEachUncertainInlier(const TwoViewData& data, const Model& model, double sigma, double bound,
-                            Visit&& visit)
+                            Visit&& visit,
+                            double maxVariance = std::numeric_limits<double>::infinity())
 {
     if (model.uncertaintyDof == 0)
         return;
@@ -50,6 +54,7 @@ void forEachUncertainInlier(const TwoViewData& data, const Model& model, double 
     for (size_t i = 0; i < data.points1.size(); ++i) {
         double distanceSquared = 0, variance = 0;
         uncertainty.evaluate(data.points1[i], data.points2[i], false, distanceSquared, variance);
+        variance = std::min(variance, maxVariance);
         if (distanceSquared <= bound * variance)
             visit(i, distanceSquared, variance);
     }
@@ -57,11 +62,12 @@ void forEachUncertainInlier(const TwoViewData& data, const Model& model, double 
 
 //! The mask of forEachUncertainInlier's points (resized to data.size()).
 inline void classifyByUncertainty(const TwoViewData& data, const Model& model, double sigma,
-                                  double bound, std::vector<uchar>& mask)
+                                  double bound, std::vector<uchar>& mask,
+                                  double maxVariance = std::numeric_limits<double>::infinity())
 {
     mask.assign(data.points1.size(), 0);
-    forEachUncertainInlier(data, model, sigma, bound,
-                           [&](size_t i, double, double) { mask[i] = 1; });
+    forEachUncertainInlier(
+        data, model, sigma, bound, [&](size_t i, double, double) { mask[i] = 1; }, maxVariance);
 }
 
 } // namespace detail
