@@ -61,6 +61,32 @@ TEST(Rcme_RCME, recovers_the_motion_of_generic_scenes)
     }
 }
 
+TEST(Rcme_RCME, refinement_reaches_standard_on_clean_corridor_data)
+{
+    // Without outliers the largest support is the truth, and Standard's refinement reaches the
+    // noise floor. RCME's must too: when it was kept only if the mean entropy did not grow, it
+    // stayed with the tight subset it selected (median dq 0.0079 against Standard's 0.0012 on
+    // seeds 0-19; now 0.0012 for both).
+    std::vector<double> rcmeErrors, standardErrors;
+    for (int seed = 0; seed < 15; ++seed) {
+        const SyntheticScene s = scene(SCENE_CORRIDOR, seed, 1.0);
+        for (Method method : {METHOD_RCME, METHOD_STANDARD}) {
+            Params params = rcmeParams(seed, method);
+            params.maxIterations = 1000;
+            params.exactIterations = true;
+            const Report r = estimateRelativeMotion(s.points1, s.points2, s.cameraMatrix, params);
+            ASSERT_EQ(r.status, STATUS_SUCCESS) << "seed " << seed;
+            (method == METHOD_RCME ? rcmeErrors : standardErrors)
+                .push_back(compareMotion(r.R, r.t, s.R, s.t).dq);
+        }
+    }
+    const auto median = [](std::vector<double> v) {
+        std::sort(v.begin(), v.end());
+        return v[v.size() / 2];
+    };
+    EXPECT_LT(median(rcmeErrors), 2 * median(standardErrors));
+}
+
 TEST(Rcme_RCME, uncalibrated_gives_a_fundamental_matrix)
 {
     const SyntheticScene s = scene(SCENE_GENERIC, 3);

@@ -129,6 +129,12 @@ public:
     //! Whether a candidate still passes the tests that depend on the whole run so far (RCME's
     //! size test against the estimated inlier ratio, which only grows).
     virtual bool isStillCandidate(const Score&) const { return true; }
+    //! Whether the refinement (box 4) of a selected model is kept: by default when it is still a
+    //! candidate and scores at least as well as before.
+    virtual bool keepsRefinement(const Score& before, const Score& refined) const
+    {
+        return refined.isCandidate && !before.isBetterThan(refined);
+    }
 };
 
 //! Decides how many iterations to run.

@@ -13,8 +13,8 @@ namespace {
 
 // Refines the selected model on its inliers and classifies again, until the inlier set stops
 // changing (a refined model usually gathers inliers its minimal sample missed). A refinement is
-// kept only if the scorer still accepts it and likes it at least as much, so a diverging
-// refinement cannot spoil a good estimate.
+// kept only if the scorer keeps it (Scorer::keepsRefinement), so a diverging refinement cannot
+// spoil a good estimate.
 void refineSelected(const TwoViewData& data, EstimatorComponents& c, RansacResult& result)
 {
     constexpr int kMaxRounds = 10;
@@ -25,7 +25,7 @@ void refineSelected(const TwoViewData& data, EstimatorComponents& c, RansacResul
         if (!c.refiner->refine(data, result.mask, refined))
             return;
         const Score refinedScore = c.scorer->score(data, refined);
-        if (!refinedScore.isCandidate || result.score.isBetterThan(refinedScore))
+        if (!c.scorer->keepsRefinement(result.score, refinedScore))
             return;
         result.model = refined;
         result.score = refinedScore;
