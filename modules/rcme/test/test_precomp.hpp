@@ -15,15 +15,23 @@
 namespace opencv_test {
 using namespace cv::rcme;
 
-//! The well-conditioned generic scene of generateScene, shared by the tests that need one.
-inline SyntheticScene genericTestScene(int seed, double inlierRatio = 0.5, int numPoints = 500)
+//! A scene of generateScene with the other parameters at their defaults.
+inline SyntheticScene testScene(SceneKind kind, int seed, double inlierRatio = 0.5,
+                                double sigma = 1.0, int numPoints = 500)
 {
     SceneParams sp;
-    sp.kind = SCENE_GENERIC;
+    sp.kind = kind;
     sp.seed = seed;
     sp.inlierRatio = inlierRatio;
+    sp.sigma = sigma;
     sp.numPoints = numPoints;
     return generateScene(sp);
+}
+
+//! The well-conditioned generic scene, shared by the tests that need one.
+inline SyntheticScene genericTestScene(int seed, double inlierRatio = 0.5, int numPoints = 500)
+{
+    return testScene(SCENE_GENERIC, seed, inlierRatio, 1.0, numPoints);
 }
 } // namespace opencv_test
 

@@ -28,12 +28,7 @@ Params rcmeParams(int seed, Method method = METHOD_RCME)
 
 SyntheticScene scene(SceneKind kind, int seed, double inlierRatio = 0.5, double sigma = 1.0)
 {
-    SceneParams sp;
-    sp.kind = kind;
-    sp.seed = seed;
-    sp.inlierRatio = inlierRatio;
-    sp.sigma = sigma;
-    return generateScene(sp);
+    return testScene(kind, seed, inlierRatio, sigma);
 }
 
 TEST(Rcme_RCME, recovers_the_motion_of_generic_scenes)
