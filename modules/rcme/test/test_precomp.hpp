@@ -15,9 +15,9 @@
 namespace opencv_test {
 using namespace cv::rcme;
 
-//! A scene of generateScene with the other parameters at their defaults.
-inline SyntheticScene testScene(SceneKind kind, int seed, double inlierRatio = 0.5,
-                                double sigma = 1.0, int numPoints = 500)
+//! Scene parameters with the other fields at their defaults.
+inline SceneParams testSceneParams(SceneKind kind, int seed, double inlierRatio = 0.5,
+                                   double sigma = 1.0, int numPoints = 500)
 {
     SceneParams sp;
     sp.kind = kind;
@@ -25,7 +25,14 @@ inline SyntheticScene testScene(SceneKind kind, int seed, double inlierRatio = 0
     sp.inlierRatio = inlierRatio;
     sp.sigma = sigma;
     sp.numPoints = numPoints;
-    return generateScene(sp);
+    return sp;
+}
+
+//! The scene of testSceneParams.
+inline SyntheticScene testScene(SceneKind kind, int seed, double inlierRatio = 0.5,
+                                double sigma = 1.0, int numPoints = 500)
+{
+    return generateScene(testSceneParams(kind, seed, inlierRatio, sigma, numPoints));
 }
 
 //! The well-conditioned generic scene, shared by the tests that need one.

@@ -15,13 +15,7 @@ namespace {
 
 SceneParams makeParams(SceneKind kind, int seed, int n = 500, double w = 0.5, double sigma = 1.0)
 {
-    SceneParams p;
-    p.kind = kind;
-    p.seed = seed;
-    p.numPoints = n;
-    p.inlierRatio = w;
-    p.sigma = sigma;
-    return p;
+    return testSceneParams(kind, seed, w, sigma, n);
 }
 
 double maxAbsDiff(const Mat& a, const Mat& b)
