@@ -8,15 +8,17 @@ every configuration sees the same scenes and the same seeds.
     PYTHONPATH=build/python /usr/bin/python3 samples/rcme_ablation.py --seeds 100
 """
 import argparse
+import os
+import sys
 import time
 
 import numpy as np
 
-try:
-    import rcme
-except ImportError:  # built inside OpenCV
-    import cv2
-    rcme = cv2.rcme
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "benchmark"))
+from methods import Budget, rcme, rcme_params  # noqa: E402
+from corridor import scene_params  # noqa: E402
+
+SIGMA = 1.0
 
 ABLATION = [
     ("Standard (reference)", rcme.METHOD_STANDARD, {}),
@@ -47,10 +49,7 @@ def run(rows, scenes, iterations):
     for name, method, fields in rows:
         errors, pqi, other, seconds = [], 0, 0, []
         for seed, s in scenes:
-            params = rcme.Params()
-            params.method = method
-            params.maxIterations, params.exactIterations = iterations, True
-            params.randomGeneratorState = seed
+            params = rcme_params(method, Budget(iterations, SIGMA, seed))
             for field, value in fields.items():
                 setattr(params, field, value)
             start = time.perf_counter()
@@ -74,11 +73,8 @@ def main():
     ap.add_argument("--inlier-ratio", type=float, default=0.5)
     ap.add_argument("--iterations", type=int, default=1000)
     args = ap.parse_args()
-    scenes = []
-    for seed in range(args.seeds):
-        sp = rcme.SceneParams()
-        sp.inlierRatio, sp.seed = args.inlier_ratio, seed
-        scenes.append((seed, rcme.generateScene(sp)))
+    scenes = [(seed, rcme.generateScene(scene_params(500, args.inlier_ratio, SIGMA, seed)))
+              for seed in range(args.seeds)]
     print("corridor: seeds 0-%d, inlier ratio %.2f, exactly N = %d, with K" % (
         args.seeds - 1, args.inlier_ratio, args.iterations))
     print("\nRCME's choices (ablation)\n")
