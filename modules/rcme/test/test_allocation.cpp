@@ -9,16 +9,6 @@
 
 #include "test_precomp.hpp"
 
-#if defined(__has_feature)
-#if __has_feature(address_sanitizer) || __has_feature(memory_sanitizer) ||                         \
-    __has_feature(thread_sanitizer)
-#define RCME_SANITIZED_BUILD 1
-#endif
-#endif
-#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
-#define RCME_SANITIZED_BUILD 1
-#endif
-
 #if defined(RCME_STANDALONE_TESTS) && defined(__GLIBC__) && !defined(RCME_SANITIZED_BUILD)
 #define RCME_COUNT_ALLOCATIONS 1
 #endif

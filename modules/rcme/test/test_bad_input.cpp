@@ -251,7 +251,7 @@ TEST(Rcme_BadInput, collinear_points_are_degenerate)
 TEST(Rcme_BadInput, all_outliers_give_poor_quality_input)
 {
     // Independent random points: no epipolar geometry explains them better than chance.
-    for (int seed = 0; seed < 5; ++seed) {
+    for (int seed = 0; seed < testRuns(5, 1); ++seed) {
         for (Method method :
              {METHOD_STANDARD, METHOD_RCME, METHOD_PRCME, METHOD_MLESAC, METHOD_COV_RANSAC})
             for (const EntryPoint& entry : entryPoints(method)) {

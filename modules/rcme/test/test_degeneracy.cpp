@@ -68,7 +68,7 @@ TEST(Rcme_Degeneracy, planar_scenes_and_pure_rotations_are_reported_degenerate)
     for (Degeneracy kind : {Degeneracy::Plane, Degeneracy::PureRotation})
         for (Method method : methods)
             for (bool calibrated : {true, false})
-                for (int seed = 0; seed < 4; ++seed) {
+                for (int seed = 0; seed < testRuns(4, 1); ++seed) {
                     const TwoViews v = degenerateScene(kind, seed);
                     Params params;
                     params.method = method;

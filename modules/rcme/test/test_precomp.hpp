@@ -12,8 +12,37 @@
 
 #include "opencv2/rcme.hpp"
 
+// Sanitizer builds (test/hardening/): gcc defines __SANITIZE_*__, clang has __has_feature.
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+#define RCME_SANITIZED_BUILD 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer) || __has_feature(memory_sanitizer) ||                         \
+    __has_feature(thread_sanitizer)
+#define RCME_SANITIZED_BUILD 1
+#endif
+#endif
+
 namespace opencv_test {
 using namespace cv::rcme;
+
+#ifdef RCME_SANITIZED_BUILD
+constexpr bool kSanitizedBuild = true;
+#else
+constexpr bool kSanitizedBuild = false;
+#endif
+
+/** How many scenes (seeds, trials) a test runs: `full` in the normal builds, `sanitized` in the
+ASan + UBSan and TSan jobs. Those look for memory errors, undefined behaviour and races on the
+same code paths, not for statistics, and run Eigen's code 20 to 60 times slower; the one place
+that sets the size of every heavy test (doc/hardening.md). */
+constexpr int testRuns(int full, int sanitized)
+{
+    return kSanitizedBuild ? sanitized : full;
+}
+
+/** Whether a test checks the statistics of its scenes (medians, failure counts, mean recall):
+only with the full count of testRuns; each scene's own checks run in every build. */
+constexpr bool kChecksStatistics = !kSanitizedBuild;
 
 //! Scene parameters with the other fields at their defaults.
 inline SceneParams testSceneParams(SceneKind kind, int seed, double inlierRatio = 0.5,

@@ -150,17 +150,7 @@ template <typename Call> double peakGrowthBytes(Call&& call, bool& measured)
 
 // Sanitizers keep freed memory in quarantine and shadow every byte, so the resident memory says
 // nothing about the library there; the run must still complete.
-#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
-constexpr bool kMeasureMemory = false;
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer) || __has_feature(thread_sanitizer)
-constexpr bool kMeasureMemory = false;
-#else
-constexpr bool kMeasureMemory = true;
-#endif
-#else
-constexpr bool kMeasureMemory = true;
-#endif
+constexpr bool kMeasureMemory = !kSanitizedBuild;
 
 TEST(Rcme_Properties, million_points_complete_with_memory_proportional_to_n)
 {
@@ -171,7 +161,7 @@ TEST(Rcme_Properties, million_points_complete_with_memory_proportional_to_n)
     params.refineIterations = 3;
     // Sanitizer builds run Eigen's code some 60 times slower: there a tenth of the sizes must
     // complete (10^6 points would take 10 minutes), and the memory is not measured.
-    const int divisor = kMeasureMemory ? 1 : 10;
+    const int divisor = testRuns(1, 10);
     const int sizes[] = {100000 / divisor, 1000000 / divisor};
     double growth[2] = {0, 0};
     bool measured[2] = {false, false};

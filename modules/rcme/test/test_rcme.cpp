@@ -36,7 +36,8 @@ TEST(Rcme_RCME, recovers_the_motion_of_generic_scenes)
     for (Method method : {METHOD_RCME, METHOD_PRCME}) {
         int failures = 0;
         std::vector<double> errors;
-        for (int seed = 0; seed < 20; ++seed) {
+        const int runs = testRuns(20, 5);
+        for (int seed = 0; seed < runs; ++seed) {
             const SyntheticScene s = scene(SCENE_GENERIC, seed);
             const Report r = estimateRelativeMotion(s.points1, s.points2, s.cameraMatrix,
                                                     rcmeParams(seed, method));
@@ -49,6 +50,8 @@ TEST(Rcme_RCME, recovers_the_motion_of_generic_scenes)
             EXPECT_GE(r.meanEntropy, 0.0); // excess over the noise floor
             EXPECT_EQ(r.covariance.size(), Size(5, 5));
         }
+        if (!kChecksStatistics)
+            continue;
         ASSERT_FALSE(errors.empty());
         std::sort(errors.begin(), errors.end());
         EXPECT_LT(errors[errors.size() / 2], 0.5) << "method " << static_cast<int>(method);
@@ -63,7 +66,7 @@ TEST(Rcme_RCME, refinement_reaches_standard_on_clean_corridor_data)
     // stayed with the tight subset it selected (median dq 0.0079 against Standard's 0.0012 on
     // seeds 0-19; now 0.0012 for both).
     std::vector<double> rcmeErrors, standardErrors;
-    for (int seed = 0; seed < 15; ++seed) {
+    for (int seed = 0; seed < testRuns(15, 3); ++seed) {
         const SyntheticScene s = scene(SCENE_CORRIDOR, seed, 1.0);
         for (Method method : {METHOD_RCME, METHOD_STANDARD}) {
             Params params = rcmeParams(seed, method);
@@ -79,7 +82,8 @@ TEST(Rcme_RCME, refinement_reaches_standard_on_clean_corridor_data)
         std::sort(v.begin(), v.end());
         return v[v.size() / 2];
     };
-    EXPECT_LT(median(rcmeErrors), 2 * median(standardErrors));
+    if (kChecksStatistics)
+        EXPECT_LT(median(rcmeErrors), 2 * median(standardErrors));
 }
 
 TEST(Rcme_RCME, uncalibrated_gives_a_fundamental_matrix)
@@ -97,7 +101,7 @@ TEST(Rcme_RCME, uncalibrated_gives_a_fundamental_matrix)
 
 TEST(Rcme_RCME, pure_outliers_are_poor_quality_input)
 {
-    for (int seed = 0; seed < 5; ++seed) {
+    for (int seed = 0; seed < testRuns(5, 2); ++seed) {
         const SyntheticScene s = scene(SCENE_GENERIC, seed, 0.0);
         for (Method method : {METHOD_RCME, METHOD_PRCME}) {
             const Report r = estimateRelativeMotion(s.points1, s.points2, s.cameraMatrix,
@@ -312,7 +316,8 @@ TEST(Rcme_Baselines, mlesac_and_cov_ransac_recover_the_motion_of_generic_scenes)
     for (Method method : {METHOD_MLESAC, METHOD_COV_RANSAC}) {
         int failures = 0;
         std::vector<double> errors;
-        for (int seed = 0; seed < 20; ++seed) {
+        const int runs = testRuns(20, 5);
+        for (int seed = 0; seed < runs; ++seed) {
             const SyntheticScene s = scene(SCENE_GENERIC, seed);
             const Report r = estimateRelativeMotion(s.points1, s.points2, s.cameraMatrix,
                                                     rcmeParams(seed, method));
@@ -329,6 +334,8 @@ TEST(Rcme_Baselines, mlesac_and_cov_ransac_recover_the_motion_of_generic_scenes)
             else
                 EXPECT_LT(r.pointsPerHypothesis, 0.5 * n) << "seed " << seed;
         }
+        if (!kChecksStatistics)
+            continue;
         ASSERT_FALSE(errors.empty());
         std::sort(errors.begin(), errors.end());
         EXPECT_LT(errors[errors.size() / 2], 0.5) << "method " << static_cast<int>(method);
@@ -348,7 +355,7 @@ TEST(Rcme_Baselines, cov_ransac_bands_do_not_take_in_the_outliers)
     // K it took in 239 of the 250 outliers on average (and all of them in 23 of 30 scenes) and
     // reported success. With the cap, 6.6 on average and at most 12 (100 seeds, doc/results.md).
     for (bool withK : {true, false})
-        for (int seed = 0; seed < 6; ++seed) {
+        for (int seed = 0; seed < testRuns(6, 2); ++seed) {
             const SyntheticScene s = scene(SCENE_CORRIDOR, seed);
             const Report r =
                 estimateRelativeMotion(s.points1, s.points2, withK ? s.cameraMatrix : Mat(),
@@ -367,7 +374,8 @@ TEST(Rcme_Baselines, seven_and_five_point_solvers_for_every_method)
     for (MinimalSolverKind solver : {SOLVER_SEVEN_POINT, SOLVER_FIVE_POINT})
         for (Method method : {METHOD_STANDARD, METHOD_RCME, METHOD_MLESAC, METHOD_COV_RANSAC}) {
             std::vector<double> errors;
-            for (int seed = 0; seed < 10; ++seed) {
+            const int runs = testRuns(10, 2);
+            for (int seed = 0; seed < runs; ++seed) {
                 const SyntheticScene s = scene(SCENE_GENERIC, seed);
                 Params params = rcmeParams(seed, method);
                 params.solver = solver;
@@ -376,6 +384,8 @@ TEST(Rcme_Baselines, seven_and_five_point_solvers_for_every_method)
                 if (r.status == STATUS_SUCCESS)
                     errors.push_back(compareMotion(r.R, r.t, s.R, s.t).rotationDeg);
             }
+            if (!kChecksStatistics)
+                continue;
             ASSERT_GE(errors.size(), 8u)
                 << "method " << static_cast<int>(method) << " solver " << static_cast<int>(solver);
             std::sort(errors.begin(), errors.end());

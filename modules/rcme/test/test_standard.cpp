@@ -35,7 +35,8 @@ TEST(Rcme_Standard, recovers_pose_on_well_conditioned_scenes)
     // failure then is the intended behaviour, but it must stay rare.
     std::vector<double> rotationErrors, translationErrors;
     int failures = 0;
-    for (int seed = 0; seed < 100; ++seed) {
+    const int runs = testRuns(100, 20);
+    for (int seed = 0; seed < runs; ++seed) {
         const SyntheticScene scene = genericTestScene(seed);
         Mat E, R, t, mask;
         Status status;
@@ -51,6 +52,8 @@ TEST(Rcme_Standard, recovers_pose_on_well_conditioned_scenes)
         rotationErrors.push_back(error.rotationDeg);
         translationErrors.push_back(error.translationDeg);
     }
+    if (!kChecksStatistics)
+        return;
     EXPECT_LT(median(rotationErrors), 0.5);
     EXPECT_LT(median(translationErrors), 5.0);
     EXPECT_LE(failures, 5);
@@ -304,7 +307,8 @@ TEST(Rcme_Standard, local_optimization_gathers_more_inliers)
     // With the final refinement off, what the loop selects is what comes out: LO's refits of the
     // candidates recover more of the true inliers (measured: mean recall 0.49 -> 0.57).
     double recall[2] = {0, 0};
-    for (int seed = 0; seed < 20; ++seed) {
+    const int runs = testRuns(20, 5);
+    for (int seed = 0; seed < runs; ++seed) {
         const SyntheticScene scene = genericTestScene(seed, 0.4);
         for (int lo = 0; lo < 2; ++lo) {
             Params params = standardParams(seed);
@@ -317,10 +321,11 @@ TEST(Rcme_Standard, local_optimization_gathers_more_inliers)
             int found = 0;
             for (int i = 0; i < r.mask.rows; ++i)
                 found += r.mask.at<uchar>(i) && scene.inlierMask.at<uchar>(i);
-            recall[lo] += static_cast<double>(found) / countNonZero(scene.inlierMask) / 20;
+            recall[lo] += static_cast<double>(found) / countNonZero(scene.inlierMask) / runs;
         }
     }
-    EXPECT_GT(recall[1], recall[0] + 0.04);
+    if (kChecksStatistics)
+        EXPECT_GT(recall[1], recall[0] + 0.04);
 }
 
 } // namespace
