@@ -14,21 +14,24 @@ INTREE ?= 1
 # libclang-rt-14-dev are for the fuzzer: libFuzzer and clang's ASan runtime).
 FUZZ_SECONDS ?= 60
 
+# ccache (used by every build when installed) keys on the compiler's command line: with the
+# checkout as base directory and without the working directory in the hash (the sanitizer builds
+# have -g), a fresh clone in another folder reuses the objects of the previous one.
+export CCACHE_BASEDIR ?= $(CURDIR)
+export CCACHE_NOHASHDIR = 1
+
 .PHONY: demo test test-intree sanitize sanitize-thread fuzz build configure deps
 
 demo: build
 	$(BUILD_DIR)/bin/rcme_two_view_demo --method rcme --out $(BUILD_DIR)/demo/two_view_demo.png
 
-test: build
-	cd $(BUILD_DIR) && ctest --output-on-failure -j$(JOBS)
-	JOBS=$(JOBS) test/hardening/run_sanitizers.sh
-	JOBS=$(JOBS) test/hardening/run_sanitizers.sh --tsan
-	JOBS=$(JOBS) test/hardening/run_fuzzer.sh $(FUZZ_SECONDS)
-ifneq ($(INTREE),0)
-	test/opencv_intree/build_opencv_with_rcme.sh --jobs $(JOBS)
-endif
+# Every part in order (packages, Release build, ctest, ASan + UBSan, TSan, fuzzing, in-tree),
+# ending with a table of the parts and their wall times (test/run_test_parts.sh).
+test:
+	BUILD_DIR=$(BUILD_DIR) JOBS=$(JOBS) FUZZ_SECONDS=$(FUZZ_SECONDS) INTREE=$(INTREE) \
+	  MAKE="$(MAKE)" test/run_test_parts.sh
 
-# ASan + UBSan build (build-sanitize/) and every C++ test under it.
+# ASan + UBSan build (build-sanitize/, clang, shared with the fuzzer) and every C++ test under it.
 sanitize: deps
 	JOBS=$(JOBS) test/hardening/run_sanitizers.sh
 
@@ -36,7 +39,7 @@ sanitize: deps
 sanitize-thread: deps
 	JOBS=$(JOBS) test/hardening/run_sanitizers.sh --tsan
 
-# libFuzzer on the public API (build-fuzz/) for FUZZ_SECONDS.
+# libFuzzer on the public API (build-sanitize/) for FUZZ_SECONDS.
 fuzz: deps
 	JOBS=$(JOBS) test/hardening/run_fuzzer.sh $(FUZZ_SECONDS)
 

@@ -1,13 +1,14 @@
 #!/usr/bin/env bash
 # Fuzz job (doc/hardening.md): builds the libFuzzer target rcme_fuzz_public_api with Debian's
-# clang (libFuzzer + ASan + UBSan, RCME_FUZZ=ON) in build-fuzz/, writes the seed corpus with
+# clang (libFuzzer + ASan + UBSan, RCME_FUZZ=ON) in build-sanitize/, the build of the ASan tests
+# (address_build.sh), writes the seed corpus with
 # rcme_fuzz_seeds and fuzzes for a bounded time. A crash, a sanitizer report, an exception other
 # than cv::Exception, a broken output contract or an input slower than -timeout fails the script;
-# libFuzzer then leaves the input in build-fuzz/fuzz/ (crash-*, timeout-*) to replay with
-# `build-fuzz/bin/rcme_fuzz_public_api <file>`.
+# libFuzzer then leaves the input in build-sanitize/fuzz/ (crash-*, timeout-*) to replay with
+# `build-sanitize/bin/rcme_fuzz_public_api <file>`.
 #
 #   test/hardening/run_fuzzer.sh [SECONDS]     default 60 (CI: make fuzz FUZZ_SECONDS=60)
-# Environment: JOBS (build, default 2), FUZZ_BUILD_DIR (default build-fuzz).
+# Environment: JOBS (build, default 2), SANITIZE_BUILD_DIR (default build-sanitize).
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 
@@ -18,13 +19,13 @@ case "$seconds" in
     exit 2
     ;;
 esac
-build_dir=${FUZZ_BUILD_DIR:-build-fuzz}
+# shellcheck source=address_build.sh
+. test/hardening/address_build.sh
+build_dir=$address_build_dir
 jobs=${JOBS:-2}
 start=$(date +%s)
 
-cmake -S . -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-    -DCMAKE_CXX_COMPILER=clang++ -DRCME_SANITIZE=address -DRCME_FUZZ=ON \
-    -DRCME_BUILD_TESTS=OFF -DRCME_BUILD_PYTHON=OFF -DRCME_BUILD_SAMPLES=OFF -DRCME_BUILD_PERF=OFF
+configure_address_build
 nice cmake --build "$build_dir" -j"$jobs" --target rcme_fuzz_public_api rcme_fuzz_seeds
 built=$(date +%s)
 

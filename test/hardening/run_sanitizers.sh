@@ -1,11 +1,15 @@
 #!/usr/bin/env bash
-# Sanitizer job (doc/hardening.md): builds the library, every C++ test and the samples with
-# ASan + UBSan (gcc, RCME_SANITIZE=address) in build-sanitize/ and runs every C++ test there
-# through ctest. Any sanitizer report fails the test that triggered it, and so the script.
+# Sanitizer jobs (doc/hardening.md). Any sanitizer report fails the test that triggered it, and so
+# the script.
 #
-#   test/hardening/run_sanitizers.sh            ASan + UBSan, every C++ test (CI: make sanitize)
-#   test/hardening/run_sanitizers.sh --tsan     TSan (RCME_SANITIZE=thread) in build-tsan/, the
-#                                               concurrency tests only
+#   test/hardening/run_sanitizers.sh            ASan + UBSan (clang, RCME_SANITIZE=address): the
+#                                               library, every C++ test and the samples in
+#                                               build-sanitize/ (shared with run_fuzzer.sh, see
+#                                               address_build.sh), every ctest entry there
+#   test/hardening/run_sanitizers.sh --tsan     TSan (gcc, RCME_SANITIZE=thread) in build-tsan/:
+#                                               the concurrency tests only, so only their file
+#                                               is compiled besides the library
+# Sanitized tests run their small sizes (testRuns in modules/rcme/test/test_precomp.hpp).
 # Environment: JOBS (default 2), SANITIZE_BUILD_DIR (default build-sanitize or build-tsan).
 set -euo pipefail
 cd "$(dirname "$0")/../.."
@@ -22,24 +26,28 @@ here=$(pwd)
 start=$(date +%s)
 
 if [ "$mode" = address ]; then
-    build_dir=${SANITIZE_BUILD_DIR:-build-sanitize}
+    # shellcheck source=address_build.sh
+    . test/hardening/address_build.sh
+    build_dir=$address_build_dir
     # Every report is fatal (the code is also built with -fno-sanitize-recover=all). Leak checking
     # stays on: no suppression is needed for OpenCV's or TBB's libraries (measured, see
     # doc/hardening.md), so none is installed.
     export ASAN_OPTIONS="halt_on_error=1:detect_leaks=1:detect_stack_use_after_return=1:check_initialization_order=1:strict_init_order=1${ASAN_OPTIONS:+:$ASAN_OPTIONS}"
     export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1${UBSAN_OPTIONS:+:$UBSAN_OPTIONS}"
     test_filter=()
+    configure_address_build
+    # Everything but the fuzz targets, which run_fuzzer.sh builds.
+    nice cmake --build "$build_dir" -j"$jobs" --target opencv_test_rcme rcme_two_view_demo \
+        rcme_mono_vo
 else
     build_dir=${SANITIZE_BUILD_DIR:-build-tsan}
     export TSAN_OPTIONS="halt_on_error=1:second_deadlock_stack=1${TSAN_OPTIONS:+:$TSAN_OPTIONS}"
     test_filter=(-R "Concurrency")
+    cmake -S . -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DRCME_SANITIZE=thread \
+        -DRCME_BUILD_TESTS=ON -DRCME_TESTS_CONCURRENCY_ONLY=ON -DRCME_BUILD_PYTHON=OFF \
+        -DRCME_BUILD_PERF=OFF -DRCME_BUILD_SAMPLES=OFF
+    nice cmake --build "$build_dir" -j"$jobs"
 fi
-
-# RelWithDebInfo: optimised like the real library (-O2), with line numbers in the reports.
-cmake -S . -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DRCME_SANITIZE="$mode" \
-    -DRCME_BUILD_PYTHON=OFF -DRCME_BUILD_PERF=OFF -DRCME_BUILD_TESTS=ON \
-    -DRCME_BUILD_SAMPLES="$([ "$mode" = address ] && echo ON || echo OFF)"
-nice cmake --build "$build_dir" -j"$jobs"
 built=$(date +%s)
 
 (cd "$build_dir" && ctest --output-on-failure -j"$jobs" "${test_filter[@]}")

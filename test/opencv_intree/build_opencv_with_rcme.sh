@@ -189,9 +189,32 @@ fi
 [ -f "$OPENCV_SRC/CMakeLists.txt" ] || die "no OpenCV source in $OPENCV_SRC"
 SRC_VERSION_NUMBER="$(opencv_version_of "$OPENCV_SRC")"
 
+# --- The module, copied to one place per build folder
+# OpenCV's build refers to the module's files by path. Built from the clone's own modules/, every
+# fresh clone (CI's) is a new path and ninja recompiles all of the module, and ccache misses too.
+# The build therefore reads a copy beside it, updated file by file: a file whose content did not
+# change keeps its time stamp, so only what a clone changed is rebuilt.
+sync_tree() { # sync_tree SRC DST
+  local src=$1 dst=$2 f
+  mkdir -p "$dst"
+  while IFS= read -r -d '' f; do
+    if ! cmp -s "$src/$f" "$dst/$f"; then
+      mkdir -p "$(dirname "$dst/$f")"
+      cp "$src/$f" "$dst/$f"
+    fi
+  done < <(cd "$src" && find . -type f ! -name '*.pyc' -print0)
+  while IFS= read -r -d '' f; do
+    [ -e "$src/$f" ] || rm -f "$dst/$f"
+  done < <(cd "$dst" && find . -type f -print0)
+}
+CLONE_MODULES_DIR="$MODULES_DIR"
+MODULES_DIR="$BUILD_DIR/rcme-modules"
+PY_TEST_DIR="$MODULES_DIR/rcme/misc/python/test"
+sync_tree "$CLONE_MODULES_DIR" "$MODULES_DIR"
+
 echo "OpenCV source: $OPENCV_SRC (OpenCV $SRC_VERSION_NUMBER)"
 echo "Build folder:  $BUILD_DIR"
-echo "rcme modules:  $MODULES_DIR"
+echo "rcme modules:  $MODULES_DIR (a copy of $CLONE_MODULES_DIR)"
 
 # --- Configure (every run: picks up added or removed files of the module)
 

@@ -97,11 +97,19 @@ install(FILES "${CMAKE_BINARY_DIR}/rcmeConfig.cmake" "${CMAKE_BINARY_DIR}/rcmeCo
 if(RCME_BUILD_TESTS)
   find_package(GTest REQUIRED)
   find_package(Threads REQUIRED)
-  file(GLOB RCME_TEST_SOURCES CONFIGURE_DEPENDS "${RCME_MODULE_DIR}/test/*.cpp")
+  # The TSan job runs the concurrency tests only (test/hardening/run_sanitizers.sh --tsan), so it
+  # compiles only their file and the main.
+  option(RCME_TESTS_CONCURRENCY_ONLY "Build only the concurrency tests (the TSan job)" OFF)
+  if(RCME_TESTS_CONCURRENCY_ONLY)
+    set(RCME_TEST_SOURCES "${RCME_MODULE_DIR}/test/test_concurrency.cpp"
+      "${RCME_MODULE_DIR}/test/test_main.cpp")
+  else()
+    file(GLOB RCME_TEST_SOURCES CONFIGURE_DEPENDS "${RCME_MODULE_DIR}/test/*.cpp")
+  endif()
   add_executable(opencv_test_rcme ${RCME_TEST_SOURCES})
-  target_compile_definitions(opencv_test_rcme PRIVATE RCME_STANDALONE_TESTS
-    RCME_SHARED_DATA_DIR="${PROJECT_SOURCE_DIR}/../shared/data"
-    RCME_SAMPLES_DATA_DIR="${PROJECT_SOURCE_DIR}/samples/data")
+  # No absolute path of the checkout on the command line: ccache then serves a fresh clone in
+  # another folder from the objects of the previous one (CCACHE_BASEDIR, test/run_test_parts.sh).
+  target_compile_definitions(opencv_test_rcme PRIVATE RCME_STANDALONE_TESTS)
   target_include_directories(opencv_test_rcme PRIVATE ${RCME_MODULE_DIR}/test ${RCME_MODULE_DIR}/src)
   target_link_libraries(opencv_test_rcme PRIVATE rcme_objects GTest::gtest Threads::Threads
     opencv_imgcodecs)

@@ -1,0 +1,63 @@
+#!/usr/bin/env bash
+# make test: runs every part of the test suite in order, times each one and ends with a table
+# of the parts and their wall times (also when a part fails, so that a budget regression or a
+# failure is visible in every CI log). The budget is stated in README.md ("Tests"): at most 45
+# minutes on a cold 2-core machine, at most 15 minutes warm.
+#
+# Environment (set by the Makefile): BUILD_DIR, JOBS, FUZZ_SECONDS, INTREE (0 skips the in-tree
+# OpenCV part), MAKE.
+set -uo pipefail
+cd "$(dirname "$0")/.."
+
+build_dir=${BUILD_DIR:-build}
+jobs=${JOBS:-2}
+fuzz_seconds=${FUZZ_SECONDS:-60}
+intree=${INTREE:-1}
+make_cmd=${MAKE:-make}
+
+names=()
+times=()
+results=()
+total_start=$SECONDS
+
+print_table() {
+    printf '\n%-44s %10s  %s\n' "make test part" "wall time" "result"
+    local i
+    for i in "${!names[@]}"; do
+        printf '%-44s %7d s  %s\n' "${names[$i]}" "${times[$i]}" "${results[$i]}"
+    done
+    printf '%-44s %7d s  (%d min %d s)\n' "total" "$((SECONDS - total_start))" \
+        "$(((SECONDS - total_start) / 60))" "$(((SECONDS - total_start) % 60))"
+}
+
+# part NAME COMMAND...: runs the command, records its wall time; stops the suite on failure.
+part() {
+    local name=$1
+    shift
+    printf '\n==== make test: %s\n' "$name"
+    local start=$SECONDS status=0
+    "$@" || status=$?
+    names+=("$name")
+    times+=("$((SECONDS - start))")
+    if [ "$status" -eq 0 ]; then
+        results+=("ok")
+    else
+        results+=("FAILED (exit $status)")
+        print_table
+        echo "make test: '$name' failed" >&2
+        exit "$status"
+    fi
+}
+
+part "Debian packages (make deps)" "$make_cmd" --no-print-directory deps
+part "configure + Release build ($build_dir)" "$make_cmd" --no-print-directory build \
+    BUILD_DIR="$build_dir" JOBS="$jobs"
+part "ctest, Release" bash -c "cd '$build_dir' && ctest --output-on-failure -j'$jobs'"
+part "ASan + UBSan build and C++ tests" env JOBS="$jobs" test/hardening/run_sanitizers.sh
+part "TSan build and concurrency tests" env JOBS="$jobs" test/hardening/run_sanitizers.sh --tsan
+part "fuzzing ($fuzz_seconds s)" env JOBS="$jobs" test/hardening/run_fuzzer.sh "$fuzz_seconds"
+if [ "$intree" != 0 ]; then
+    part "in-tree OpenCV build and its tests" test/opencv_intree/build_opencv_with_rcme.sh \
+        --jobs "$jobs"
+fi
+print_table
