@@ -20,6 +20,7 @@ struct TwoViewData
     Eigen::Matrix3d Kinv = Eigen::Matrix3d::Identity();
     double sigma = 1.0;     //!< noise per pixel coordinate
     double threshold = 0.0; //!< inlier threshold on the Sampson distance, pixels
+    bool useEstimatedNoise = true; //!< Params::useEstimatedNoise
 
     int size() const { return static_cast<int>(points1.size()); }
 };
