@@ -155,12 +155,17 @@ def print_table(rows):
 def run_real(args):
     here = os.path.dirname(os.path.abspath(__file__))
     sys.path.insert(0, os.path.join(here, "benchmark"))
-    import datasets
-    import pairs as pair_selection
+    import matching
+    import run_benchmark
+    repo_root = os.path.dirname(here)
+    data = os.path.normpath(os.path.join(repo_root, "..", "shared", "data"))
+    matcher = matching.Matcher(args.cache or matching.default_cache_dir(repo_root))
+    selection = argparse.Namespace(data=data, max_references=args.max_references, quick=False)
+    with_pose = [p for p in run_benchmark.real_pairs(selection, matcher)[0]
+                 if p.K is not None and p.R_gt is not None]
     rows = {}
     noise = {}
-    data_root = os.path.normpath(os.path.join(here, "..", "..", "shared", "data"))
-    for pair in pair_selection.sequence_pairs(data_root, args.cache, args.max_pairs):
+    for pair in with_pose:
         for noise_from_data in (False, True):
             rep = rcme.estimateRelativeMotion(pair.points1, pair.points2, pair.K,
                                               params_for(args.real_sigma, noise_from_data))
@@ -189,7 +194,9 @@ def main():
                     help="Params.sigma as a multiple of the true noise (synthetic)")
     ap.add_argument("--real-sigma", type=float, default=1.0, help="Params.sigma on real pairs")
     ap.add_argument("--cache", default=None, help="match cache folder (default: the benchmark's)")
-    ap.add_argument("--max-pairs", type=int, default=0, help="pairs per sequence (0: all)")
+    ap.add_argument("--max-references", type=int, default=0, metavar="K",
+                    help="real: at most K reference frames per sequence (0: all), as the "
+                         "benchmark's option")
     args = ap.parse_args()
     if not (args.synthetic or args.real):
         args.synthetic = True
