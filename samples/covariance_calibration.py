@@ -105,7 +105,7 @@ def synthetic_configs(scenes_per_config):
 
 def run_synthetic(args):
     rows = {}
-    noise_ratio = []
+    noise_ratio, noise_ratio_f = [], []
     for config, seed in synthetic_configs(args.scenes_per_config):
         sp = rcme.SceneParams()
         sp.kind, sp.numPoints, sp.sigma = config["kind"], config["n"], config["sigma"]
@@ -118,6 +118,11 @@ def run_synthetic(args):
             result = nees(rep, scene.R, scene.t)
             if noise_from_data and rep.status == rcme.STATUS_SUCCESS:
                 noise_ratio.append(rep.noiseSigma / config["sigma"])
+                # F only: the 7-DoF covariance is not reported; its noise estimate is
+                f_only = rcme.estimateRelativeMotion(scene.points1, scene.points2, None,
+                                                     params_for(stated, True))
+                if f_only.status == rcme.STATUS_SUCCESS:
+                    noise_ratio_f.append(f_only.noiseSigma / config["sigma"])
             if result is None:
                 continue
             scene_name = "generic" if config["kind"] == rcme.SCENE_GENERIC else "corridor"
@@ -129,9 +134,11 @@ def run_synthetic(args):
           "corridor: same n and sigma, baseline 1 m; inlier ratio 1.0 and 0.7), stated sigma = "
           "%g x true, default Params otherwise" % (n_scenes, args.stated_sigma_factor))
     print_table(rows)
-    r = np.asarray(noise_ratio)
-    print("\nnoiseSigma / true sigma over %d successful runs: mean %.3f, median %.3f, "
-          "5-95 %% range %.3f-%.3f" % (len(r), r.mean(), np.median(r), *np.percentile(r, [5, 95])))
+    for name, ratios in (("with K", noise_ratio), ("F only", noise_ratio_f)):
+        r = np.asarray(ratios)
+        print("\nnoiseSigma / true sigma, %s, over %d successful runs: mean %.3f, median %.3f, "
+              "5-95 %% range %.3f-%.3f" % (name, len(r), r.mean(), np.median(r),
+                                           *np.percentile(r, [5, 95])))
 
 
 def print_table(rows):
@@ -173,15 +180,23 @@ def run_real(args):
             if result is None:
                 continue
             if noise_from_data:
-                noise.setdefault(pair.dataset, []).append(rep.noiseSigma)
+                error = rcme.compareMotion(rep.R, rep.t, pair.R_gt, pair.t_gt)
+                noise.setdefault(pair.dataset, []).append(
+                    (rep.noiseSigma, error.rotationDeg, np.linalg.norm(rep.rotationStdDeg),
+                     error.translationDeg, rep.translationStdDeg))
             for key in ((pair.dataset, "all pairs"), ("all", "all")):
                 rows.setdefault((noise_from_data,) + key, []).append(result)
     print("real pairs (benchmark selection, SIFT matches), stated sigma %g px, default Params"
           % args.real_sigma)
     print_table(rows)
+    print("\n| sequence | noiseSigma median (range), px | median rotation error, deg | "
+          "median predicted rotation std (norm), deg | median translation error, deg | "
+          "median predicted translation std, deg |")
+    print("|---|---|---|---|---|---|")
     for name, values in sorted(noise.items()):
-        print("%s: noiseSigma median %.2f px (range %.2f-%.2f)" %
-              (name, np.median(values), np.min(values), np.max(values)))
+        v = np.asarray(values)
+        print("| %s | %.2f (%.2f-%.2f) | %.3f | %.4f | %.2f | %.3f |" % (
+            name, np.median(v[:, 0]), v[:, 0].min(), v[:, 0].max(), *np.median(v[:, 1:], 0)))
 
 
 def main():

@@ -125,8 +125,7 @@ MotionError compareMotion(InputArray R, InputArray t, InputArray Rgt, InputArray
     return err;
 }
 
-Mat poseCovariance(InputArray R, InputArray t, InputArray covariance, double scaleStd,
-                   bool inverse)
+Mat poseCovariance(InputArray R, InputArray t, InputArray covariance, double scaleStd, bool inverse)
 {
     const char* f = "poseCovariance";
     const Matrix3d Rm = readRotation(R, f, "R");

@@ -218,8 +218,8 @@ void setFinalUncertainty(const TwoViewData& data, const std::vector<int>& indice
     const bool useEstimate =
         data.useEstimatedNoise && dof >= kMinNoiseDof && std::isfinite(model.noiseSigma);
     const double sigma = useEstimate ? model.noiseSigma : data.sigma;
-    model.covariance *= sigma * sigma /
-                        (data.sigma * data.sigma * truncatedNormalVariance(data.threshold / sigma));
+    model.covariance *=
+        sigma * sigma / (data.sigma * data.sigma * truncatedNormalVariance(data.threshold / sigma));
 }
 
 // A point that carries this share of the information on some direction of the model outweighs
@@ -369,10 +369,9 @@ public:
         // Where the points do not determine the motion (a pure rotation leaves t free, when the
         // degeneracy test is off), the refit may turn t into the decomposition that puts the
         // points behind the cameras; then the motion stays and only its uncertainty is updated.
-        if (model.hasMotion &&
-            2 * countPointsInFront(fitted.R, fitted.t, data.points1, data.points2, data.Kinv,
-                                   &mask, nullptr) <
-                static_cast<int>(inliers_.size())) {
+        if (model.hasMotion && 2 * countPointsInFront(fitted.R, fitted.t, data.points1,
+                                                      data.points2, data.Kinv, &mask, nullptr) <
+                                   static_cast<int>(inliers_.size())) {
             fitted = model;
             if (!fitModel(data, inliers_, 0, Uncertainty::kFinalEstimate, fitted, &confirmed_))
                 return;
