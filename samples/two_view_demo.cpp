@@ -400,15 +400,17 @@ Estimate estimateWithRcme(const std::vector<cv::Point2f>& pts1,
         return est;
     }
     if (covariance.rows == 5 && covariance.cols == 5) {
-        cv::Mat sd;
-        cv::sqrt(covariance.diag(), sd);
-        std::cout << "std of the rotation increment (deg): "
-                  << fixed(sd.at<double>(0) * 180 / CV_PI, 4) << " "
-                  << fixed(sd.at<double>(1) * 180 / CV_PI, 4) << " "
-                  << fixed(sd.at<double>(2) * 180 / CV_PI, 4)
-                  << ", of the translation direction (deg): "
-                  << fixed(sd.at<double>(3) * 180 / CV_PI, 4) << " "
-                  << fixed(sd.at<double>(4) * 180 / CV_PI, 4) << "\n";
+        // The report's figures for the same estimate (a second run: same seed, same result).
+        const cv::rcme::Report report = cv::rcme::estimateRelativeMotion(pts1, pts2, K, params);
+        if (report.status == cv::rcme::STATUS_SUCCESS && !report.rotationStdDeg.empty())
+            std::cout << "noise estimated from the inliers: " << fixed(report.noiseSigma, 2)
+                      << " px\n"
+                      << "std of the rotation about camera 1's x, y, z (deg): "
+                      << fixed(report.rotationStdDeg.at<double>(0), 4) << " "
+                      << fixed(report.rotationStdDeg.at<double>(1), 4) << " "
+                      << fixed(report.rotationStdDeg.at<double>(2), 4)
+                      << ", of the translation direction (deg, largest): "
+                      << fixed(report.translationStdDeg, 4) << "\n";
     }
     return est;
 }

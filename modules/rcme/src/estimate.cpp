@@ -33,6 +33,18 @@ struct Estimation
     std::vector<uchar> inFront; //!< inliers in front of both cameras (calibrated only)
 };
 
+// The covariance and its per-axis standard deviations in degrees.
+void setMotionUncertainty(const Eigen::Matrix<double, 5, 5>& covariance, Report& report)
+{
+    constexpr double kDeg = 180.0 / CV_PI;
+    report.covariance = toMat(covariance);
+    report.rotationStdDeg = toMat(covariance.diagonal().head<3>().cwiseSqrt() * kDeg);
+    // The direction's two tangent coordinates are angles (rad) to first order.
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> direction(
+        covariance.bottomRightCorner<2, 2>());
+    report.translationStdDeg = std::sqrt(std::max(0.0, direction.eigenvalues()(1))) * kDeg;
+}
+
 void fail(Report& report, std::vector<uchar>& mask, Status status, const std::string& message)
 {
     report = Report();
@@ -78,11 +90,13 @@ Estimation estimate(InputArray points1, InputArray points2, InputArray cameraMat
                 report.R = toMat(model.R);
                 report.t = toMat(model.t);
                 if (model.uncertaintyDof == detail::MotionTangent::kDof)
-                    report.covariance = toMat(model.covariance.topLeftCorner<5, 5>());
+                    setMotionUncertainty(model.covariance.topLeftCorner<5, 5>(), report);
             }
         } else {
             report.F = toMat(model.F);
         }
+        if (report.status == STATUS_SUCCESS)
+            report.noiseSigma = model.noiseSigma;
     }
     report.iterations = result.iterations;
     report.pointsPerHypothesis = result.pointsPerHypothesis;

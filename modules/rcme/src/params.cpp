@@ -9,10 +9,11 @@ namespace rcme {
 Params::Params()
     : method(METHOD_STANDARD), sampler(SAMPLER_UNIFORM), solver(SOLVER_EIGHT_POINT), sigma(1.0),
       threshold(0.0), confidence(0.99), maxIterations(1000), exactIterations(false),
-      randomGeneratorState(0), refine(true), refineIterations(20), alpha(0.05),
-      entropyThreshold(1.27), inlierRatioFactor(0.9), priorInlierRatio(0.0), consistencyDof(1),
-      sampleFitIterations(5), sampleLeverage(false), earlyTerminationEntropy(0.0),
-      localOptimization(false), degeneracyTest(true), isParallel(false)
+      randomGeneratorState(0), refine(true), refineIterations(20), useEstimatedNoise(true),
+      alpha(0.05), entropyThreshold(1.27), inlierRatioFactor(0.9), priorInlierRatio(0.0),
+      consistencyDof(1), sampleFitIterations(5), sampleLeverage(false),
+      earlyTerminationEntropy(0.0), localOptimization(false), degeneracyTest(true),
+      isParallel(false)
 {
 }
 
@@ -45,7 +46,9 @@ Params Params::fromUsacParams(const UsacParams& usacParams)
 Report::Report()
     : status(STATUS_POOR_QUALITY_INPUT), inlierCount(0), iterations(0),
       pointsPerHypothesis(std::numeric_limits<double>::quiet_NaN()),
-      meanEntropy(std::numeric_limits<double>::quiet_NaN()), timeSeconds(0)
+      meanEntropy(std::numeric_limits<double>::quiet_NaN()),
+      noiseSigma(std::numeric_limits<double>::quiet_NaN()),
+      translationStdDeg(std::numeric_limits<double>::quiet_NaN()), timeSeconds(0)
 {
 }
 

@@ -10,6 +10,7 @@
 #include "framework/components.hpp"
 #include "geometry/epipolar.hpp"
 #include "geometry/motion_parameterization.hpp"
+#include "geometry/statistics.hpp"
 
 namespace cv {
 namespace rcme {
@@ -159,6 +160,18 @@ double levenbergMarquardt(const TwoViewData& data, const std::vector<int>& inlie
     return cost;
 }
 
+// Fewest residual degrees of freedom (inliers minus the model's) for the estimated noise to
+// replace the stated sigma: from 30 on, the estimate's relative standard error is below ~15 %.
+constexpr int kMinNoiseDof = 30;
+
+// Which covariance a fit gets: the stated sigma's sigma^2 (J^T J)^-1 (a hypothesis, a minimal
+// sample: the paper's Sigma_p), or the final estimate's (see finalUncertainty).
+enum class Uncertainty
+{
+    kStatedNoise,
+    kFinalEstimate
+};
+
 // sigma^2 (J^T J)^-1 at the problem's state, with the directions it refers to. None when J^T J is
 // ill-conditioned: the points do not determine the model (e.g. a degenerate minimal sample).
 template <class Problem>
@@ -182,22 +195,119 @@ void setUncertainty(const TwoViewData& data, const std::vector<int>& indices,
     problem.derivatives(model.directions);
 }
 
-} // namespace
+// The final estimate's noise and covariance. The noise comes from the inliers' Sampson residuals
+// with the fit's degrees of freedom removed (n - dof) and the band's truncation undone: the band
+// |d| < threshold keeps only the central part of the Gaussian, whose mean square alone would
+// underestimate sigma^2 (by 24 % at 1.96 sigma). The fit is least squares on the points inside
+// the band, i.e. an M-estimator with psi(d) = d 1{|d| < c}; its (sandwich) covariance is
+// sigma^2 / h(c / sigma) (J^T J)^-1 with h = truncatedNormalVariance (the points a step of the
+// model would push across the band's edge take their information with them), 1.32 times the
+// plain sigma^2 (J^T J)^-1 at 1.96 sigma.
+template <class Problem>
+void setFinalUncertainty(const TwoViewData& data, const std::vector<int>& indices,
+                         const Problem& problem, Model& model)
+{
+    setUncertainty(data, indices, problem, model);
+    const int dof = static_cast<int>(indices.size()) - Problem::kDof;
+    model.noiseSigma =
+        dof > 0 ? noiseFromTruncatedResiduals(sampsonCost(data, indices, problem.current()) / dof,
+                                              data.threshold)
+                : std::numeric_limits<double>::quiet_NaN();
+    if (model.uncertaintyDof == 0)
+        return;
+    const bool useEstimate =
+        data.useEstimatedNoise && dof >= kMinNoiseDof && std::isfinite(model.noiseSigma);
+    const double sigma = useEstimate ? model.noiseSigma : data.sigma;
+    model.covariance *=
+        sigma * sigma / (data.sigma * data.sigma * truncatedNormalVariance(data.threshold / sigma));
+}
 
-bool fitModelOn(const TwoViewData& data, const std::vector<int>& indices, int maxIterations,
-                Model& model)
+// A point that carries this share of the information on some direction of the model outweighs
+// all the others together there (leverage h > 1/2): they cannot confirm that it is an inlier.
+constexpr double kMaxLeverage = 0.5;
+
+// Removes from `indices` the inliers the others do not confirm, returns whether any was removed.
+// A point's residual d at a fit it took part in has variance sigma^2 (1 - h), h its leverage, so
+// the band's test on d is lax for a point of high leverage (it drags the fit onto itself): an
+// outlier in the band near an epipole or at a depth far from the scene's takes over directions
+// of the motion and makes its covariance confident where it is wrong. Such a point must pass the
+// band on its studentized residual, |d| / sqrt(1 - h) < threshold, and have h <= 1/2.
+template <class Problem>
+bool dropUnconfirmedInliers(const TwoViewData& data, const Problem& problem,
+                            std::vector<int>& indices)
+{
+    constexpr int P = Problem::kDof;
+    Eigen::Matrix<double, P, P> JtJ;
+    Eigen::Matrix<double, P, 1> Jtr;
+    normalEquations(data, indices, problem, JtJ, Jtr);
+    const Eigen::LDLT<Eigen::Matrix<double, P, P>> information(JtJ);
+    if (information.info() != Eigen::Success)
+        return false;
+    const Eigen::Matrix3d F = problem.current();
+    Eigen::Matrix3d dF[P];
+    problem.derivatives(dF);
+    Eigen::Matrix<double, 1, P> g;
+    double d = 0;
+    const double threshold2 = data.threshold * data.threshold;
+    const size_t before = indices.size();
+    indices.erase(std::remove_if(indices.begin(), indices.end(),
+                                 [&](int i) {
+                                     if (!sampsonDistanceAndGradient<P>(
+                                             F, dF, data.points1[static_cast<size_t>(i)],
+                                             data.points2[static_cast<size_t>(i)], d, g))
+                                         return false;
+                                     const double h = g * information.solve(g.transpose());
+                                     return h > kMaxLeverage || d * d > threshold2 * (1.0 - h);
+                                 }),
+                  indices.end());
+    return indices.size() < before;
+}
+
+template <class Problem>
+void setUncertaintyFor(Uncertainty kind, const TwoViewData& data, const std::vector<int>& indices,
+                       const Problem& problem, Model& model)
+{
+    if (kind == Uncertainty::kFinalEstimate)
+        setFinalUncertainty(data, indices, problem, model);
+    else
+        setUncertainty(data, indices, problem, model);
+}
+
+// Least squares on `indices`; the final estimate is refitted without the inliers the others do
+// not confirm, when that leaves enough points to determine it.
+template <class Problem>
+void fitProblem(const TwoViewData& data, const std::vector<int>& indices, int maxIterations,
+                Uncertainty uncertainty, Problem& problem, Model& model,
+                std::vector<int>* confirmed)
+{
+    levenbergMarquardt(data, indices, problem, maxIterations);
+    if (uncertainty == Uncertainty::kFinalEstimate && confirmed) {
+        *confirmed = indices;
+        if (dropUnconfirmedInliers(data, problem, *confirmed) &&
+            confirmed->size() >= 2 * static_cast<size_t>(Problem::kDof)) {
+            levenbergMarquardt(data, *confirmed, problem, maxIterations);
+            setFinalUncertainty(data, *confirmed, problem, model);
+            return;
+        }
+        *confirmed = indices;
+    }
+    setUncertaintyFor(uncertainty, data, indices, problem, model);
+}
+
+// `confirmed` (final estimate only): the points the fit ends up using.
+bool fitModel(const TwoViewData& data, const std::vector<int>& indices, int maxIterations,
+              Uncertainty uncertainty, Model& model, std::vector<int>* confirmed = nullptr)
 {
     if (model.hasMotion) {
         CV_Assert(data.calibrated);
         if (indices.size() < static_cast<size_t>(MotionProblem::kDof))
             return false;
         MotionProblem problem{data.Kinv, model.R, model.t, model.R, model.t};
-        levenbergMarquardt(data, indices, problem, maxIterations);
+        fitProblem(data, indices, maxIterations, uncertainty, problem, model, confirmed);
         model.R = problem.R;
         model.t = problem.t;
         model.E = skew(model.t) * model.R;
         model.F = fundamentalFromEssential(model.E, data.Kinv);
-        setUncertainty(data, indices, problem, model);
         return model.F.allFinite();
     }
     // A 7-DoF F needs 7 constraints (a 7-point sample determines it exactly).
@@ -208,10 +318,17 @@ bool fitModelOn(const TwoViewData& data, const std::vector<int>& indices, int ma
         !normalizingTransform(data.points2, indices, T2))
         return false;
     FundamentalProblem problem(T1, T2, T2.transpose().inverse() * model.F * T1.inverse());
-    levenbergMarquardt(data, indices, problem, maxIterations);
+    fitProblem(data, indices, maxIterations, uncertainty, problem, model, confirmed);
     model.F = normalizeFundamental(problem.current());
-    setUncertainty(data, indices, problem, model);
     return model.F.allFinite();
+}
+
+} // namespace
+
+bool fitModelOn(const TwoViewData& data, const std::vector<int>& indices, int maxIterations,
+                Model& model)
+{
+    return fitModel(data, indices, maxIterations, Uncertainty::kStatedNoise, model);
 }
 
 namespace {
@@ -223,17 +340,62 @@ public:
 
     bool refine(const TwoViewData& data, const std::vector<uchar>& mask, Model& model) override
     {
-        // Reused, and sized for every point at once: local optimisation refines inside the
-        // hypothesis loop, which must not allocate.
+        collect(mask);
+        return fitModelOn(data, inliers_, maxIterations_, model);
+    }
+
+    void finalize(const TwoViewData& data, std::vector<uchar>& mask, Model& model) override
+    {
+        const std::vector<uchar>* selection = &mask;
+        if (model.hasMotion) {
+            // An inlier whose point triangulates behind a camera is no correspondence of this
+            // motion but an outlier that fell into its band by chance. Such points lie near the
+            // epipoles or at extreme depths, where one of them outweighs dozens of true ones:
+            // kept, they pull the motion and make its covariance confident where it is wrong.
+            // Far points are kept (no distance bound): only a negative depth says "outlier".
+            // When that would drop most inliers, their depths are not determined (rays nearly
+            // parallel: a pure rotation) and cheirality says nothing about them.
+            const int inFront =
+                countPointsInFront(model.R, model.t, data.points1, data.points2, data.Kinv, &mask,
+                                   &inFront_, std::numeric_limits<double>::infinity());
+            if (2 * inFront >= static_cast<int>(std::count(mask.begin(), mask.end(), 1)))
+                selection = &inFront_;
+        }
+        collect(*selection);
+        Model fitted = model;
+        if (!fitModel(data, inliers_, maxIterations_, Uncertainty::kFinalEstimate, fitted,
+                      &confirmed_))
+            return;
+        // Where the points do not determine the motion (a pure rotation leaves t free, when the
+        // degeneracy test is off), the refit may turn t into the decomposition that puts the
+        // points behind the cameras; then the motion stays and only its uncertainty is updated.
+        if (model.hasMotion && 2 * countPointsInFront(fitted.R, fitted.t, data.points1,
+                                                      data.points2, data.Kinv, &mask, nullptr) <
+                                   static_cast<int>(inliers_.size())) {
+            fitted = model;
+            if (!fitModel(data, inliers_, 0, Uncertainty::kFinalEstimate, fitted, &confirmed_))
+                return;
+        }
+        model = fitted;
+        std::fill(mask.begin(), mask.end(), 0);
+        for (int i : confirmed_)
+            mask[static_cast<size_t>(i)] = 1;
+    }
+
+private:
+    // Reused, and sized for every point at once: local optimisation refines inside the
+    // hypothesis loop, which must not allocate.
+    void collect(const std::vector<uchar>& mask)
+    {
         inliers_.reserve(mask.size());
         inliers_.clear();
         for (size_t i = 0; i < mask.size(); ++i)
             if (mask[i])
                 inliers_.push_back(static_cast<int>(i));
-        return fitModelOn(data, inliers_, maxIterations_, model);
     }
 
-private:
+    std::vector<uchar> inFront_;
+    std::vector<int> confirmed_;
     int maxIterations_;
     std::vector<int> inliers_;
 };

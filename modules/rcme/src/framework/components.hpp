@@ -33,6 +33,8 @@ struct Model
     int uncertaintyDof = 0;
     Eigen::Matrix<double, 7, 7> covariance = Eigen::Matrix<double, 7, 7>::Zero();
     Eigen::Matrix3d directions[7];
+    //! Noise sigma estimated from the final inliers' residuals (Refiner::finalize), NaN if none.
+    double noiseSigma = std::numeric_limits<double>::quiet_NaN();
 };
 
 /** Gives a model of calibrated data its motion: E (from F when the hypothesis was not
@@ -156,6 +158,11 @@ public:
     //! Returns false (model untouched) when refinement is not possible.
     virtual bool refine(const TwoViewData& data, const std::vector<uchar>& inliers,
                         Model& model) = 0;
+    /** The estimate's final fit and uncertainty, once: on the inliers in front of both cameras
+    (calibrated) that the others confirm, with the noise estimated from their residuals and the
+    covariance of the band-truncated fit (see Report::covariance). On return `inliers` marks
+    the points the fit used. */
+    virtual void finalize(const TwoViewData& data, std::vector<uchar>& inliers, Model& model) = 0;
 };
 
 //! A method: one component of each kind.

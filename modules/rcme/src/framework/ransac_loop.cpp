@@ -338,6 +338,15 @@ RansacResult runRansac(const TwoViewData& data, EstimatorComponents& c)
         std::fill(result.mask.begin(), result.mask.end(), 0);
         return result;
     }
+    if (c.refiner) {
+        c.refiner->finalize(data, result.mask, result.model);
+        // The final fit moves the model a little: the inliers are the points it used that the
+        // final model still holds.
+        std::vector<uchar> held;
+        c.scorer->classify(data, result.model, held);
+        for (size_t i = 0; i < held.size(); ++i)
+            result.mask[i] = result.mask[i] && held[i];
+    }
     result.status = STATUS_SUCCESS;
     return result;
 }

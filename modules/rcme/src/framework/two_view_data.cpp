@@ -172,6 +172,7 @@ TwoViewData makeTwoViewData(InputArray points1, InputArray points2, InputArray c
     data.Kinv = data.K.inverse();
     data.sigma = params.sigma;
     data.threshold = inlierThreshold(params);
+    data.useEstimatedNoise = params.useEstimatedNoise;
     return data;
 }
 

@@ -18,8 +18,9 @@ struct TwoViewData
     bool calibrated = false;
     Eigen::Matrix3d K = Eigen::Matrix3d::Identity();
     Eigen::Matrix3d Kinv = Eigen::Matrix3d::Identity();
-    double sigma = 1.0;     //!< noise per pixel coordinate
-    double threshold = 0.0; //!< inlier threshold on the Sampson distance, pixels
+    double sigma = 1.0;            //!< noise per pixel coordinate
+    double threshold = 0.0;        //!< inlier threshold on the Sampson distance, pixels
+    bool useEstimatedNoise = true; //!< Params::useEstimatedNoise
 
     int size() const { return static_cast<int>(points1.size()); }
 };

@@ -70,6 +70,39 @@ int binomialTailBound(int trials, double p, double level)
     return trials + 1;
 }
 
+double truncatedNormalVariance(double k)
+{
+    CV_Assert(k > 0);
+    if (k < 1e-4) // the series of the ratio below, where it cancels catastrophically
+        return k * k / 3.0;
+    const double density = std::exp(-0.5 * k * k) / std::sqrt(2.0 * CV_PI);
+    const double mass = std::erf(k / std::sqrt(2.0)); // P(|z| < k)
+    return 1.0 - 2.0 * k * density / mass;
+}
+
+double noiseFromTruncatedResiduals(double meanSquare, double threshold)
+{
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    if (!(meanSquare > 0) || !(threshold > 0) || !(meanSquare < threshold * threshold / 3.0))
+        return nan;
+    // sigma^2 h(c / sigma) grows with sigma from 0 towards c^2 / 3, and h <= 1 bounds sigma below
+    // by the root mean square; bisection in log sigma.
+    double lo = std::log(std::sqrt(meanSquare)), hi = lo + 1.0;
+    auto secondMoment = [&](double logSigma) {
+        const double sigma = std::exp(logSigma);
+        return sigma * sigma * truncatedNormalVariance(threshold / sigma);
+    };
+    for (int i = 0; i < 200 && secondMoment(hi) < meanSquare; ++i)
+        hi += 1.0;
+    if (secondMoment(hi) < meanSquare)
+        return nan;
+    for (int i = 0; i < 100; ++i) {
+        const double mid = 0.5 * (lo + hi);
+        (secondMoment(mid) < meanSquare ? lo : hi) = mid;
+    }
+    return std::exp(0.5 * (lo + hi));
+}
+
 } // namespace detail
 } // namespace rcme
 } // namespace cv

@@ -18,6 +18,16 @@ double chiSquareQuantile(double p, int dof);
 exceeds only with probability `level`. */
 int binomialTailBound(int trials, double p, double level);
 
+/** E[z^2 | |z| < k] for a standard normal z: the variance left to residuals that an inlier band
+of half-width k sigma truncates (1 for k -> infinity, k^2 / 3 for k -> 0). */
+double truncatedNormalVariance(double k);
+
+/** The sigma of zero-mean Gaussian residuals from the mean square of those kept by the band
+|d| < threshold: solves sigma^2 truncatedNormalVariance(threshold / sigma) = meanSquare. NaN
+when meanSquare is not below threshold^2 / 3 (residuals spread as uniformly as the band allows:
+no Gaussian explains them) or not positive. */
+double noiseFromTruncatedResiduals(double meanSquare, double threshold);
+
 } // namespace detail
 } // namespace rcme
 } // namespace cv

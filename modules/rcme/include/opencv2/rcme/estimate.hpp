@@ -126,6 +126,33 @@ CV_EXPORTS_W int recoverPose(InputArray E, InputArray points1, InputArray points
                              OutputArray t, double focal = 1.0, Point2d pp = Point2d(0, 0),
                              InputOutputArray mask = noArray());
 
+/** @brief The 6x6 covariance of the relative pose (rotation, translation) from the 5x5 tangent
+covariance of Report::covariance, for a pose graph (GTSAM's Pose3 convention).
+
+The pose is T = [R | t] (x2 = R x1 + t: camera 1's coordinates into camera 2's, |t| = 1), and the
+returned matrix is the covariance of xi = (omega, v), rotation first, perturbing T on the right:
+T_true = T Exp(xi), to first order R_true = R exp([omega]x) and t_true = t + R v. This is the
+tangent of gtsam::Pose3 (retract / localCoordinates with its default chart agree to first
+order); Sophus' SE3 orders the tangent (translation, rotation): swap the two 3x3 blocks.
+
+The scale of t is not observable from two views: along the scale direction u = (0, R^T t) (in
+xi; with inverse, (0, -t)) the variance is scaleStd^2, and u is orthogonal to every other
+eigenvector. With scaleStd = 0 (default) the matrix is singular along u, marking the unknown
+scale; a pose graph needs a scale prior there (e.g. scaleStd from odometry, in units of the
+metric baseline; multiply the translation rows and columns by the baseline to get metres).
+
+@param R 3x3 rotation of the estimate (Report::R).
+@param t 3x1 unit translation of the estimate (Report::t).
+@param covariance 5x5 tangent covariance (Report::covariance).
+@param scaleStd standard deviation of the translation along t (>= 0), same unit as t.
+@param inverse false: the covariance of T; true: of T^-1 = [R^T | -R^T t], camera 2's pose in
+camera 1's frame (the measurement of gtsam::BetweenFactor<Pose3>(x1, x2) for camera-to-world
+poses), in the same right-perturbation convention: Ad_T Sigma Ad_T^T.
+@return 6x6 CV_64F symmetric covariance.
+*/
+CV_EXPORTS_W Mat poseCovariance(InputArray R, InputArray t, InputArray covariance,
+                                double scaleStd = 0, bool inverse = false);
+
 //! @}
 
 } // namespace rcme

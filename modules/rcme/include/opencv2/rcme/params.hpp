@@ -121,6 +121,11 @@ struct CV_EXPORTS_W_SIMPLE Params
     CV_PROP_RW bool refine;
     //! Maximum Levenberg-Marquardt iterations of the refinement. Default 20.
     CV_PROP_RW int refineIterations;
+    /** Noise of Report::covariance: true (default) uses Report::noiseSigma, the noise estimated
+    from the final inliers' residuals, when they leave at least 30 residual degrees of freedom
+    (inliers minus the model's 5 or 7) and the stated sigma otherwise; false always uses the
+    stated sigma. The estimate does not change the inlier threshold, only the covariance. */
+    CV_PROP_RW bool useEstimatedNoise;
     //! Significance level of RCME's tests (consistency and quality). Default 0.05.
     CV_PROP_RW double alpha;
     /** RCME's entropy threshold mu, as the excess of the mean inlier entropy over the noise
@@ -191,9 +196,26 @@ struct CV_EXPORTS_W_SIMPLE Report
     CV_PROP_RW double meanEntropy; //!< RCME's mean inlier entropy psi (nats), NaN for other methods
     /** 5x5 covariance of the motion in the tangent space (rotation increment omega, rad, then
     the two components of the translation direction increment in an orthonormal basis of t's
-    complement), only with a camera matrix: sigma^2 (J^T J)^-1 of the Gold Standard refinement,
-    empty when refinement is off */
+    complement), only with a camera matrix; empty when refinement is off. R_true = R exp([omega]x)
+    and t_true ~ t + B beta, where B's columns are b1 = normalize(t x e_k) (e_k the axis of t's
+    smallest absolute component) and b2 = t x b1. It is the first-order covariance of the Gold
+    Standard fit on the inliers in front of both cameras: sigma^2 / h(c / sigma) (J^T J)^-1, with
+    sigma the noise chosen by Params::useEstimatedNoise, c the inlier threshold and h(k) =
+    E[z^2 | |z| < k] (the fit sees only residuals inside the band; 1 / h = 1.32 at 1.96 sigma).
+    Its calibration is measured in doc/results.md. poseCovariance converts it to a 6x6 (rotation,
+    translation) covariance. */
     CV_PROP_RW Mat covariance;
+    /** Noise estimated from the residuals of the final inliers, pixels per coordinate: the
+    Sampson residuals' sum of squares over (inliers - model DoF), corrected for the truncation by
+    the inlier band. With or without a camera matrix; NaN on failure, with too few inliers, or
+    when the residuals fill the band as uniformly as no Gaussian would. */
+    CV_PROP_RW double noiseSigma;
+    /** 3x1 standard deviations of the rotation increment omega about the x, y, z axes of camera
+    1's frame, degrees (square roots of the covariance's diagonal); empty without covariance. */
+    CV_PROP_RW Mat rotationStdDeg;
+    /** Standard deviation of the translation direction's angle along its least determined
+    direction, degrees (the larger semi-axis of its 1-sigma cone); NaN without covariance. */
+    CV_PROP_RW double translationStdDeg;
     CV_PROP_RW double timeSeconds; //!< wall time of the call
 };
 

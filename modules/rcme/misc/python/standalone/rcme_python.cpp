@@ -435,6 +435,11 @@ const char* const kDocGenerateScene =
 const char* const kDocCompareMotion =
     "compareMotion(R, t, Rgt, tgt) -> retval\n"
     ".   @brief Compares an estimated motion with the truth; returns a MotionError.";
+const char* const kDocPoseCovariance =
+    "poseCovariance(R, t, covariance[, scaleStd[, inverse]]) -> retval\n"
+    ".   @brief The 6x6 covariance of the pose (rotation, translation), GTSAM Pose3 convention,\n"
+    ".   from the 5x5 tangent covariance of Report.covariance; singular along the unknown scale\n"
+    ".   unless scaleStd > 0. inverse: the covariance of the inverse pose.";
 const char* const kDocStatusToString =
     "statusToString(status) -> retval\n"
     ".   @brief A short English name of a STATUS_* value, e.g. \"poor quality input\".";
@@ -532,6 +537,8 @@ PYBIND11_MODULE(rcme, m)
         .plain("randomGeneratorState", &Params::randomGeneratorState, "seed; default 0")
         .plain("refine", &Params::refine, "default True")
         .plain("refineIterations", &Params::refineIterations, "default 20")
+        .plain("useEstimatedNoise", &Params::useEstimatedNoise,
+               "covariance from Report.noiseSigma (enough inliers) or Params.sigma; default True")
         .plain("alpha", &Params::alpha, "significance of RCME's tests; default 0.05")
         .plain("entropyThreshold", &Params::entropyThreshold, "RCME's mu over the noise floor")
         .plain("inlierRatioFactor", &Params::inlierRatioFactor, "RCME's lambda")
@@ -570,6 +577,11 @@ PYBIND11_MODULE(rcme, m)
         .plain("pointsPerHypothesis", &Report::pointsPerHypothesis)
         .plain("meanEntropy", &Report::meanEntropy)
         .mat("covariance", &Report::covariance, "5x5 motion covariance or None")
+        .plain("noiseSigma", &Report::noiseSigma, "noise estimated from the inliers (px), or NaN")
+        .mat("rotationStdDeg", &Report::rotationStdDeg,
+             "3x1 rotation std about camera 1's x, y, z (degrees) or None")
+        .plain("translationStdDeg", &Report::translationStdDeg,
+               "translation direction's largest angular std (degrees), or NaN")
         .plain("timeSeconds", &Report::timeSeconds);
     reportFields.addRepr("Report");
 
@@ -846,4 +858,21 @@ PYBIND11_MODULE(rcme, m)
             return cv::rcme::compareMotion(r.mat, tt.mat, rgt.mat, tgtm.mat);
         },
         py::arg("R"), py::arg("t"), py::arg("Rgt"), py::arg("tgt"), kDocCompareMotion);
+
+    m.def(
+        "poseCovariance",
+        [](py::object R, py::object t, py::object covariance, double scaleStd, bool inverse) {
+            const char* f = "poseCovariance";
+            InMat r = toMat(R, "R", Conv::Float, f);
+            InMat tt = toMat(t, "t", Conv::Float, f);
+            InMat c = toMat(covariance, "covariance", Conv::Float, f);
+            cv::Mat out;
+            {
+                py::gil_scoped_release nogil;
+                out = cv::rcme::poseCovariance(r.mat, tt.mat, c.mat, scaleStd, inverse);
+            }
+            return fromMat(out);
+        },
+        py::arg("R"), py::arg("t"), py::arg("covariance"), py::arg("scaleStd") = 0.0,
+        py::arg("inverse") = false, kDocPoseCovariance);
 }

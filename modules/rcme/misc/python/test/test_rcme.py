@@ -179,6 +179,7 @@ class _RcmeSuite:
         self.assertEqual(p.randomGeneratorState, 0)
         self.assertIs(p.refine, True)
         self.assertEqual(p.refineIterations, 20)
+        self.assertIs(p.useEstimatedNoise, True)
         self.assertAlmostEqual(p.alpha, 0.05)
         self.assertLessEqual(p.priorInlierRatio, 0.0)
         self.assertEqual(p.consistencyDof, 1)
@@ -195,7 +196,7 @@ class _RcmeSuite:
             "maxIterations": 321, "exactIterations": True, "randomGeneratorState": 42,
             "refine": False, "refineIterations": 7, "alpha": 0.01, "entropyThreshold": 2.0,
             "inlierRatioFactor": 0.6, "priorInlierRatio": 0.3, "consistencyDof": 3,
-            "degeneracyTest": False, "isParallel": True,
+            "degeneracyTest": False, "isParallel": True, "useEstimatedNoise": False,
         }
         p = b.Params()
         for name, value in values.items():
@@ -525,6 +526,44 @@ class _RcmeSuite:
         # params is optional
         rep3 = b.estimateRelativeMotion(s.points1, s.points2, s.cameraMatrix)
         self.assertValidMask(rep3.mask, n)
+
+    def test_uncertainty_fields(self):
+        b = self.b
+        s = self.make_scene(numPoints=400, seed=21, sigma=0.5)
+        rep = b.estimateRelativeMotion(s.points1, s.points2, s.cameraMatrix, self.make_params())
+        self.assertEqual(rep.status, b.STATUS_SUCCESS)
+        self.assertIs(type(rep.noiseSigma), float)
+        self.assertAlmostEqual(rep.noiseSigma, 0.5, delta=0.05)
+        C = rep.covariance
+        np.testing.assert_allclose(np.asarray(rep.rotationStdDeg).ravel(),
+                                   np.degrees(np.sqrt(np.diag(C)[:3])), rtol=1e-12)
+        self.assertAlmostEqual(rep.translationStdDeg,
+                               np.degrees(np.sqrt(np.linalg.eigvalsh(C[3:, 3:]).max())))
+        # the 6x6 pose covariance: [rotation, translation], singular along the scale R^T t
+        pose = b.poseCovariance(rep.R, rep.t, C)
+        self.assertEqual(pose.shape, (6, 6))
+        np.testing.assert_allclose(pose[:3, :3], C[:3, :3], rtol=1e-12)
+        u = np.r_[np.zeros(3), rep.R.T @ rep.t.ravel()]
+        self.assertLess(np.linalg.norm(pose @ u), 1e-12)
+        np.testing.assert_allclose(b.poseCovariance(rep.R, rep.t, C, 0.1) @ u, 0.01 * u,
+                                   atol=1e-12)
+        # the inverse pose's rotation block is R C_rr R^T
+        inverse = b.poseCovariance(rep.R, rep.t, C, 0.1, True)
+        np.testing.assert_allclose(inverse[:3, :3], rep.R @ C[:3, :3] @ rep.R.T, rtol=1e-9,
+                                   atol=1e-15)
+        # the stated sigma (1 px, twice the noise) gives a wider covariance of the same motion
+        stated = b.estimateRelativeMotion(s.points1, s.points2, s.cameraMatrix,
+                                          self.make_params(useEstimatedNoise=False))
+        np.testing.assert_allclose(stated.R, rep.R, atol=1e-12)
+        self.assertGreater(np.trace(stated.covariance), 2 * np.trace(C))
+        # uncalibrated: the noise estimate, no motion uncertainty
+        rep2 = b.estimateRelativeMotion(s.points1, s.points2, None, self.make_params())
+        self.assertAlmostEqual(rep2.noiseSigma, 0.5, delta=0.05)
+        self.assertTrue(np.isnan(rep2.translationStdDeg))
+        # failure: NaN
+        self.assertTrue(np.isnan(b.Report().noiseSigma))
+        with self.assertRaises(Exception):
+            b.poseCovariance(rep.R, rep.t, np.eye(6))
 
     def test_degenerate_scenes(self):
         b = self.b
