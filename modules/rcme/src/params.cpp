@@ -12,7 +12,7 @@ Params::Params()
       randomGeneratorState(0), refine(true), refineIterations(20), alpha(0.05),
       entropyThreshold(1.27), inlierRatioFactor(0.9), priorInlierRatio(0.0), consistencyDof(1),
       sampleFitIterations(5), sampleLeverage(false), earlyTerminationEntropy(0.0),
-      localOptimization(false), degeneracyTest(true), isParallel(false)
+      localOptimization(false), degeneracyTest(true), isParallel(false), timeBudget(0.0)
 {
 }
 

@@ -30,7 +30,7 @@ except ImportError:  # pytest, or plain unittest outside an OpenCV source tree
     _Cv2TestCase = unittest.TestCase
 
 FM_RANSAC = 8  # cv2.FM_RANSAC == cv2.RANSAC == 8, accepted by the drop-in overloads
-FM_LMEDS = 4  # cv2.FM_LMEDS, not supported by rcme
+UNKNOWN_METHOD = 99  # neither an OpenCV method flag nor a METHOD_* value
 
 
 def _load_standalone():
@@ -373,7 +373,7 @@ class _RcmeSuite:
                                                                    3.0, 0.99, 1000)[0])
         np.testing.assert_array_equal(mask2, mask)
         self.assertRaisesNaming(["method"], b.findFundamentalMat, s.points1, s.points2,
-                                FM_LMEDS, 3.0, 0.99, 2000)
+                                UNKNOWN_METHOD, 3.0, 0.99, 2000)
 
     def test_output_array_is_written_in_place(self):
         s = self.make_scene(seed=15)
@@ -716,7 +716,7 @@ class _RcmeSuite:
             b.findFundamentalMat("not points", p2, p)
         with self.assertRaises((self.error, TypeError)):
             b.findFundamentalMat(p1, p2, "not a method")  # no overload takes a string
-        self.assertRaisesNaming(["method"], b.findFundamentalMat, p1, p2, 4)  # cv2.FM_LMEDS
+        self.assertRaisesNaming(["method"], b.findFundamentalMat, p1, p2, UNKNOWN_METHOD)
         sp = b.SceneParams()
         sp.inlierRatio = 2.0
         self.assertRaisesNaming(["inlierRatio"], b.generateScene, sp)
