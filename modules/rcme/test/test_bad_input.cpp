@@ -332,6 +332,39 @@ TEST(Rcme_BadInput, recover_pose_from_e_checks_its_arguments)
     expectErrorNaming([&] { cv::rcme::recoverPose(E, p1, p2, R, t, 0.0, Point2d()); }, "focal");
 }
 
+// 10^7 exact iterations would take minutes; the budget stops every method early with the best
+// model so far and its status: success on a clean scene, poor quality input (saying why) on
+// random points.
+TEST(Rcme_BadInput, time_budget_stops_every_method_with_the_best_so_far)
+{
+    const SyntheticScene clean = genericTestScene(11, 0.8, 200);
+    for (Method method :
+         {METHOD_STANDARD, METHOD_RCME, METHOD_PRCME, METHOD_MLESAC, METHOD_COV_RANSAC}) {
+        SCOPED_TRACE(method);
+        Params params;
+        params.method = method;
+        params.maxIterations = 10000000;
+        params.exactIterations = true;
+        params.timeBudget = 0.05;
+        const Report good =
+            estimateRelativeMotion(clean.points1, clean.points2, clean.cameraMatrix, params);
+        EXPECT_LT(good.iterations, params.maxIterations);
+        EXPECT_GT(good.iterations, 0);
+        EXPECT_EQ(good.status, STATUS_SUCCESS) << good.message;
+        EXPECT_LT(compareMotion(good.R, good.t, clean.R, clean.t).rotationDeg, 1.0);
+
+        const Report bad = estimateRelativeMotion(randomPoints(200, 3), randomPoints(200, 4),
+                                                  cameraMatrix(), params);
+        EXPECT_LT(bad.iterations, params.maxIterations);
+        EXPECT_EQ(bad.status, STATUS_POOR_QUALITY_INPUT);
+        EXPECT_NE(bad.message.find("timeBudget"), std::string::npos) << bad.message;
+    }
+    Params nan;
+    nan.timeBudget = std::numeric_limits<double>::quiet_NaN();
+    expectErrorNaming([&] { estimateRelativeMotion(clean.points1, clean.points2, Mat(), nan); },
+                      "timeBudget");
+}
+
 TEST(Rcme_BadInput, status_names)
 {
     EXPECT_EQ(statusToString(STATUS_SUCCESS), "success");
