@@ -9,6 +9,7 @@
 
 #include "test_precomp.hpp"
 
+#include <algorithm>
 #include <functional>
 #include <iostream>
 #include <utility>
@@ -47,7 +48,7 @@ enum class Outcome
     NotRun //!< OpenCV crashes on this input, so it is not called
 };
 
-const char* name(Outcome o)
+const char* outcomeName(Outcome o)
 {
     switch (o) {
     case Outcome::Accept:
@@ -75,7 +76,7 @@ struct Case
     std::function<void(cv::Mat&)> opencv, rcme;
 };
 
-template <class Call> CallResult run(const Call& call)
+template <class Call> CallResult runCall(const Call& call)
 {
     CallResult r;
     try {
@@ -420,20 +421,20 @@ TEST(Rcme_OpenCVParity, both_accept_or_both_reject_and_masks_have_opencvs_layout
     for (const Case& c : cases) {
         SCOPED_TRACE(c.name);
         const Deliberate* d = deliberate(c.name);
-        const CallResult rc = run(c.rcme);
+        const CallResult rc = runCall(c.rcme);
         EXPECT_NE(rc.outcome, Outcome::OtherException) << rc.what;
         if (d && d->opencv == Outcome::NotRun) {
-            EXPECT_EQ(name(rc.outcome), std::string(name(d->rcme))) << rc.what;
+            EXPECT_EQ(outcomeName(rc.outcome), std::string(outcomeName(d->rcme))) << rc.what;
             continue;
         }
-        const CallResult cv = run(c.opencv);
+        const CallResult cv = runCall(c.opencv);
         if (d) {
-            EXPECT_EQ(name(cv.outcome), std::string(name(d->opencv))) << cv.what;
-            EXPECT_EQ(name(rc.outcome), std::string(name(d->rcme))) << rc.what;
+            EXPECT_EQ(outcomeName(cv.outcome), std::string(outcomeName(d->opencv))) << cv.what;
+            EXPECT_EQ(outcomeName(rc.outcome), std::string(outcomeName(d->rcme))) << rc.what;
             continue;
         }
         ++compared;
-        EXPECT_EQ(name(rc.outcome), std::string(name(cv.outcome)))
+        EXPECT_EQ(outcomeName(rc.outcome), std::string(outcomeName(cv.outcome)))
             << "OpenCV: " << cv.what << "\nrcme: " << rc.what;
         if (cv.outcome != Outcome::Accept || rc.outcome != Outcome::Accept)
             continue;
@@ -456,8 +457,8 @@ TEST(Rcme_OpenCVParity, every_deliberate_difference_has_a_case)
             return c.name.rfind(d.prefix, 0) == 0;
         });
         EXPECT_TRUE(covered) << d.prefix;
-        std::cout << "deliberate difference: " << d.prefix << " -- OpenCV " << name(d.opencv)
-                  << "s, rcme " << name(d.rcme) << "s: " << d.why << "\n";
+        std::cout << "deliberate difference: " << d.prefix << " -- OpenCV " << outcomeName(d.opencv)
+                  << "s, rcme " << outcomeName(d.rcme) << "s: " << d.why << "\n";
     }
 }
 
