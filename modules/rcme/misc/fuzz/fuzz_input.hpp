@@ -17,7 +17,7 @@
 namespace rcme_fuzz {
 
 //! At most this many correspondences per view, so that one execution stays in milliseconds.
-constexpr size_t kMaxPoints = 64;
+constexpr size_t kMaxPoints = 32;
 
 constexpr int kNumCalls = 19;
 

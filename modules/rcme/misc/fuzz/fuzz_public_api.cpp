@@ -49,11 +49,14 @@ Method pickMethod(uint8_t code)
     return static_cast<Method>(kMethods[code % 8]);
 }
 
-// The drop-ins also take OpenCV's own flags.
+// The drop-ins also take every OpenCV method flag.
 int pickMethodFlag(uint8_t code)
 {
+    static const int kOpenCVFlags[] = {FM_7POINT, FM_8POINT,     FM_LMEDS,      FM_RANSAC,
+                                       RHO,       USAC_DEFAULT,  USAC_PARALLEL, USAC_FM_8PTS,
+                                       USAC_FAST, USAC_ACCURATE, USAC_PROSAC,   USAC_MAGSAC};
     if (code % 8 == 5)
-        return (code & 0x80) ? FM_RANSAC : RANSAC;
+        return kOpenCVFlags[(code >> 3) % 12];
     return pickMethod(code);
 }
 
@@ -70,7 +73,7 @@ Params makeParams(const FuzzCase& c, const Mat& quality)
     p.exactIterations = c.flags & rcme_fuzz::FLAG_EXACT_ITERATIONS;
     p.randomGeneratorState = c.seed;
     p.refine = c.flags & rcme_fuzz::FLAG_REFINE;
-    p.refineIterations = pickCount(c.refineIterations, 4, 0, {-1, 1001});
+    p.refineIterations = pickCount(c.refineIterations, 3, 0, {-1, 1001});
     p.alpha = c.alpha;
     p.entropyThreshold = c.entropyThreshold;
     p.inlierRatioFactor = c.inlierRatioFactor;

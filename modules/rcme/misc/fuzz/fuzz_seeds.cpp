@@ -104,7 +104,7 @@ int main(int argc, char** argv)
         for (uint8_t method = 0; method < 6; ++method) {
             cv::rcme::SceneParams sp;
             sp.kind = static_cast<cv::rcme::SceneKind>(kind);
-            sp.numPoints = 60;
+            sp.numPoints = 32;
             sp.inlierRatio = 0.7;
             sp.seed = 10 * kind + method;
             FuzzCase c = sceneCase(sp);
