@@ -435,7 +435,7 @@ const char* const kDocFindFundamentalCalibrated =
 const char* const kDocFindFundamentalDropIn =
     "findFundamentalMat(points1, points2, method, ransacReprojThreshold, confidence, maxIters"
     "[, mask]) -> retval, mask\n"
-    ".   @brief Drop-in for cv2.findFundamentalMat; method: any cv2 flag (FM_*, USAC_*) or METHOD_*.";
+    ".   @brief Drop-in for cv2.findFundamentalMat; method: a cv2 flag or METHOD_*.";
 const char* const kDocFindFundamentalDropInDefaults =
     "findFundamentalMat(points1, points2[, method[, ransacReprojThreshold[, confidence[, mask]]]])"
     " -> retval, mask\n"
@@ -449,7 +449,7 @@ const char* const kDocFindEssentialParams =
 const char* const kDocFindEssentialDropIn =
     "findEssentialMat(points1, points2, cameraMatrix[, method[, prob[, threshold[, maxIters"
     "[, mask]]]]]) -> retval, mask\n"
-    ".   @brief Drop-in for cv2.findEssentialMat; method: any cv2 flag (RANSAC, LMEDS, USAC_*) or METHOD_*.";
+    ".   @brief Drop-in for cv2.findEssentialMat; method: a cv2 flag or METHOD_*.";
 const char* const kDocFindEssentialFocal =
     "findEssentialMat(points1, points2[, focal[, pp[, method[, prob[, threshold[, maxIters"
     "[, mask]]]]]]]) -> retval, mask\n"
