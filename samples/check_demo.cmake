@@ -7,6 +7,8 @@
 #   FILE exits with 2 and names FILE in its message.
 #   -DMODE=run -DDEMO=<sample> -DARGS=<a;b;...> -DEXPECT=<regex>: the sample run with ARGS exits
 #   with 0 and its output matches every regex of the list EXPECT.
+#   -DMODE=two_builds -DDEMO=<cv build> -DDEMO_RCME=<cv::rcme build> -DARGS=<a;b;...>: both builds
+#   of opencv_style_vo run to the end (exit 0) and their summary lines are printed side by side.
 if(MODE STREQUAL "png" OR MODE STREQUAL "jpeg")
   if(NOT EXISTS "${FILE}")
     message(FATAL_ERROR "the demo did not write ${FILE}")
@@ -51,6 +53,20 @@ elseif(MODE STREQUAL "run")
     endif()
   endforeach()
   message(STATUS "${out}")
+elseif(MODE STREQUAL "two_builds")
+  set(summary "")
+  foreach(build IN ITEMS "${DEMO}" "${DEMO_RCME}")
+    execute_process(COMMAND "${build}" ${ARGS}
+      RESULT_VARIABLE result OUTPUT_VARIABLE out ERROR_VARIABLE err)
+    if(NOT result EQUAL 0)
+      message(FATAL_ERROR "${build} did not run to the end (exit '${result}')\n${out}${err}")
+    endif()
+    if(NOT "${out}" MATCHES "[^\n]*median rotation error[^\n]*")
+      message(FATAL_ERROR "${build} printed no summary:\n${out}${err}")
+    endif()
+    string(APPEND summary "  ${CMAKE_MATCH_0}\n")
+  endforeach()
+  message(STATUS "both builds finished:\n${summary}")
 else()
   message(FATAL_ERROR "unknown MODE '${MODE}'")
 endif()

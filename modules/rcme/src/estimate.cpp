@@ -60,6 +60,9 @@ Estimation estimate(InputArray points1, InputArray points2, InputArray cameraMat
     const detail::TwoViewData data =
         detail::makeTwoViewData(points1, points2, cameraMatrix, params);
     detail::EstimatorComponents components = detail::createEstimator(params, data);
+    if (params.timeBudget > 0)
+        components.deadline =
+            start + static_cast<int64>(std::min(params.timeBudget, 1e9) * getTickFrequency());
     detail::RansacResult result = detail::runRansac(data, components);
     if (result.status == STATUS_SUCCESS && params.degeneracyTest &&
         detail::compareWithHomography(data, result.model.F, result.mask)
@@ -115,32 +118,6 @@ void requireCameraMatrix(InputArray cameraMatrix)
         CV_Error(Error::StsBadArg, "cameraMatrix is required (use findFundamentalMat without it)");
 }
 
-// OpenCV's flags select the Standard method; rcme's own Method values pass through.
-Method methodFromFlag(int method)
-{
-    if (method == FM_RANSAC || method == RANSAC)
-        return METHOD_STANDARD;
-    if (method >= METHOD_RCME && method <= METHOD_COV_RANSAC)
-        return static_cast<Method>(method);
-    CV_Error(Error::StsBadArg,
-             cv::format("method: %d is not supported by cv::rcme; use cv::FM_RANSAC / cv::RANSAC "
-                        "or a cv::rcme::Method value",
-                        method));
-}
-
-Params paramsFromDropIn(int method, double threshold, double confidence, int maxIters)
-{
-    Params params;
-    params.method = methodFromFlag(method);
-    params.threshold = threshold;
-    // The noise level the threshold implies, for the methods that model it.
-    if (threshold > 0 && std::isfinite(threshold))
-        params.sigma = threshold / 1.959963984540054;
-    params.confidence = confidence;
-    params.maxIterations = maxIters;
-    return params;
-}
-
 void writeOrRelease(const Mat& m, OutputArray out)
 {
     if (!out.needed())
@@ -174,23 +151,6 @@ Mat findFundamentalMat(InputArray points1, InputArray points2, InputArray camera
     return e.report.F;
 }
 
-Mat findFundamentalMat(InputArray points1, InputArray points2, int method,
-                       double ransacReprojThreshold, double confidence, int maxIters,
-                       OutputArray mask)
-{
-    Status status;
-    return rcme::findFundamentalMat(
-        points1, points2, paramsFromDropIn(method, ransacReprojThreshold, confidence, maxIters),
-        mask, status);
-}
-
-Mat findFundamentalMat(InputArray points1, InputArray points2, int method,
-                       double ransacReprojThreshold, double confidence, OutputArray mask)
-{
-    return rcme::findFundamentalMat(points1, points2, method, ransacReprojThreshold, confidence,
-                                    1000, mask);
-}
-
 Mat findEssentialMat(InputArray points1, InputArray points2, InputArray cameraMatrix,
                      const Params& params, OutputArray mask, Status& status)
 {
@@ -199,23 +159,6 @@ Mat findEssentialMat(InputArray points1, InputArray points2, InputArray cameraMa
     status = e.report.status;
     detail::writeMask(e.mask, mask);
     return e.report.E;
-}
-
-Mat findEssentialMat(InputArray points1, InputArray points2, InputArray cameraMatrix, int method,
-                     double prob, double threshold, int maxIters, OutputArray mask)
-{
-    Status status;
-    return rcme::findEssentialMat(points1, points2, cameraMatrix,
-                                  paramsFromDropIn(method, threshold, prob, maxIters), mask,
-                                  status);
-}
-
-Mat findEssentialMat(InputArray points1, InputArray points2, double focal, Point2d pp, int method,
-                     double prob, double threshold, int maxIters, OutputArray mask)
-{
-    Mat K;
-    eigen2cv(detail::cameraMatrixFromFocal(focal, pp), K);
-    return rcme::findEssentialMat(points1, points2, K, method, prob, threshold, maxIters, mask);
 }
 
 int recoverPose(InputArray points1, InputArray points2, InputArray cameraMatrix, OutputArray E,
@@ -231,60 +174,6 @@ int recoverPose(InputArray points1, InputArray points2, InputArray cameraMatrix,
     writeOrRelease(e.report.covariance, covariance);
     detail::writeMask(e.inFront, mask);
     return static_cast<int>(std::count(e.inFront.begin(), e.inFront.end(), 1));
-}
-
-int recoverPose(InputArray E, InputArray points1, InputArray points2, InputArray cameraMatrix,
-                OutputArray R, OutputArray t, InputOutputArray mask)
-{
-    const Mat e = E.getMat();
-    if (e.rows != 3 || e.cols != 3 || e.channels() != 1 ||
-        (e.depth() != CV_32F && e.depth() != CV_64F))
-        CV_Error(Error::StsBadArg, "E must be a 3x3 CV_32F or CV_64F matrix");
-    Mat e64;
-    e.convertTo(e64, CV_64F);
-    if (!checkRange(e64) || norm(e64) == 0)
-        CV_Error(Error::StsBadArg, "E must be finite and non-zero");
-    Eigen::Matrix3d essential;
-    cv2eigen(e64, essential);
-
-    const std::vector<Eigen::Vector2d> p1 = detail::readPoints(points1, "points1");
-    const std::vector<Eigen::Vector2d> p2 = detail::readPoints(points2, "points2");
-    if (p1.size() != p2.size())
-        CV_Error(Error::StsUnmatchedSizes,
-                 "points1 and points2 must hold the same number of points");
-    Eigen::Matrix3d K;
-    requireCameraMatrix(cameraMatrix);
-    detail::readCameraMatrix(cameraMatrix, "cameraMatrix", K);
-
-    std::vector<uchar> selection(p1.size(), 1);
-    if (!mask.empty()) {
-        const Mat m = mask.getMat();
-        if (m.total() != p1.size() || m.channels() != 1 || m.depth() != CV_8U)
-            CV_Error(Error::StsBadArg, "mask must be empty or an N-element CV_8U array");
-        const Mat flat = m.isContinuous() ? m : m.clone();
-        for (size_t i = 0; i < selection.size(); ++i)
-            selection[i] = flat.ptr<uchar>()[i] != 0;
-    }
-    Eigen::Matrix3d rotation;
-    Eigen::Vector3d translation;
-    const Eigen::Matrix3d Kinv = K.inverse();
-    detail::recoverMotionFromEssential(essential, p1, p2, Kinv, &selection, rotation, translation);
-    std::vector<uchar> inFront;
-    const int count =
-        detail::countPointsInFront(rotation, translation, p1, p2, Kinv, &selection, &inFront);
-    toMat(rotation).copyTo(R);
-    toMat(translation).copyTo(t);
-    if (mask.needed())
-        detail::writeMask(inFront, mask);
-    return count;
-}
-
-int recoverPose(InputArray E, InputArray points1, InputArray points2, OutputArray R, OutputArray t,
-                double focal, Point2d pp, InputOutputArray mask)
-{
-    Mat K;
-    eigen2cv(detail::cameraMatrixFromFocal(focal, pp), K);
-    return rcme::recoverPose(E, points1, points2, K, R, t, mask);
 }
 
 } // namespace rcme

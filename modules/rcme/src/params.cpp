@@ -13,7 +13,7 @@ Params::Params()
       alpha(0.05), entropyThreshold(1.27), inlierRatioFactor(0.9), priorInlierRatio(0.0),
       consistencyDof(1), sampleFitIterations(5), sampleLeverage(false),
       earlyTerminationEntropy(0.0), localOptimization(false), degeneracyTest(true),
-      isParallel(false)
+      isParallel(false), timeBudget(0.0)
 {
 }
 

@@ -99,7 +99,7 @@ TEST(Rcme_BadInput, malformed_points_throw_naming_the_argument)
     nan.at<double>(7, 1) = std::numeric_limits<double>::quiet_NaN();
     inf.at<double>(3, 0) = std::numeric_limits<double>::infinity();
     const Mat threeColumns(50, 3, CV_64F, Scalar(1));
-    const Mat wrongDepth(50, 2, CV_8U, Scalar(1));
+    const Mat twoChannelsTwoColumns(50, 2, CV_64FC2, Scalar::all(1));
     const Mat threeChannels(50, 1, CV_64FC3, Scalar::all(1));
     for (const EntryPoint& entry : entryPoints()) {
         SCOPED_TRACE(entry.name);
@@ -109,7 +109,7 @@ TEST(Rcme_BadInput, malformed_points_throw_naming_the_argument)
         expectErrorNaming([&] { entry.call(nan, good, K, mask); }, "points1");
         expectErrorNaming([&] { entry.call(good, inf, K, mask); }, "points2");
         expectErrorNaming([&] { entry.call(threeColumns, good, K, mask); }, "points1");
-        expectErrorNaming([&] { entry.call(good, wrongDepth, K, mask); }, "points2");
+        expectErrorNaming([&] { entry.call(good, twoChannelsTwoColumns, K, mask); }, "points2");
         expectErrorNaming([&] { entry.call(threeChannels, good, K, mask); }, "points1");
         expectErrorNaming([&] { entry.call(good, randomPoints(49, 2), K, mask); }, "points1");
     }
@@ -123,13 +123,13 @@ TEST(Rcme_BadInput, malformed_camera_matrix_throws_naming_it)
     const Mat nan = (Mat_<double>(3, 3) << 500, 0, NAN, 0, 500, 240, 0, 0, 1);
     const Mat twoByThree(2, 3, CV_64F, Scalar(1));
     const Mat fourByFour = Mat::eye(4, 4, CV_64F);
-    const Mat intK = Mat::eye(3, 3, CV_32S);
+    const Mat negativeFocal = (Mat_<double>(3, 3) << 500, 0, 320, 0, -500, 240, 0, 0, 1);
     for (const EntryPoint& entry : entryPoints()) {
         if (std::string(entry.name) == "findFundamentalMat")
             continue; // takes no camera matrix
         SCOPED_TRACE(entry.name);
         Mat mask;
-        for (const Mat& K : {singular, notProjective, nan, twoByThree, fourByFour, intK})
+        for (const Mat& K : {singular, notProjective, nan, twoByThree, fourByFour, negativeFocal})
             expectErrorNaming([&] { entry.call(p1, p2, K, mask); }, "cameraMatrix");
     }
     Mat E, R, t, mask;
@@ -267,14 +267,14 @@ TEST(Rcme_BadInput, all_outliers_give_poor_quality_input)
     }
 }
 
-TEST(Rcme_BadInput, drop_in_overloads_reject_unsupported_flags)
+TEST(Rcme_BadInput, drop_in_overloads_reject_unknown_flags)
 {
     const Mat p1 = randomPoints(50, 1), p2 = randomPoints(50, 2), K = cameraMatrix();
     Mat mask;
-    expectErrorNaming([&] { cv::rcme::findFundamentalMat(p1, p2, FM_LMEDS, 3, 0.99, 100, mask); },
+    expectErrorNaming([&] { cv::rcme::findFundamentalMat(p1, p2, 99, 3, 0.99, 100, mask); },
                       "method");
-    expectErrorNaming(
-        [&] { cv::rcme::findEssentialMat(p1, p2, K, USAC_MAGSAC, 0.99, 1, 100, mask); }, "method");
+    expectErrorNaming([&] { cv::rcme::findEssentialMat(p1, p2, K, 1029, 0.99, 1, 100, mask); },
+                      "method");
     expectErrorNaming([&] { cv::rcme::findEssentialMat(p1, p2, -1.0, Point2d(), RANSAC); },
                       "focal");
     // Drop-ins return an empty matrix on failure, as OpenCV does, and still write the mask.
@@ -283,13 +283,46 @@ TEST(Rcme_BadInput, drop_in_overloads_reject_unsupported_flags)
     EXPECT_EQ(mask.size(), Size(1, 50));
 }
 
+TEST(Rcme_BadInput, points_and_camera_matrix_of_any_depth_are_read)
+{
+    const Mat p1 = randomPoints(50, 1), p2 = randomPoints(50, 2), K = cameraMatrix();
+    Mat K32s;
+    K.convertTo(K32s, CV_32S);
+    Params params;
+    for (int depth : {CV_8U, CV_8S, CV_16U, CV_16S, CV_32S, CV_16F, CV_32F}) {
+        SCOPED_TRACE(depth);
+        Mat a, b, mask;
+        p1.convertTo(a, depth); // saturating: the values do not matter here, the reading does
+        p2.convertTo(b, depth);
+        Status status;
+        EXPECT_NO_THROW(cv::rcme::findEssentialMat(a, b, K32s, params, mask, status));
+        EXPECT_EQ(mask.size(), Size(1, 50));
+    }
+}
+
+TEST(Rcme_BadInput, negative_focal_length_is_rejected_with_a_message)
+{
+    const Mat p1 = randomPoints(50, 1), p2 = randomPoints(50, 2);
+    Mat K = cameraMatrix();
+    K.at<double>(0, 0) = -K.at<double>(0, 0);
+    Status status;
+    Mat mask;
+    try {
+        cv::rcme::findEssentialMat(p1, p2, K, Params(), mask, status);
+        ADD_FAILURE() << "no exception";
+    } catch (const cv::Exception& e) {
+        EXPECT_NE(e.err.find("cameraMatrix has a negative focal length"), std::string::npos)
+            << e.err;
+    }
+}
+
 TEST(Rcme_BadInput, recover_pose_from_e_checks_its_arguments)
 {
     const Mat p1 = randomPoints(50, 1), p2 = randomPoints(50, 2), K = cameraMatrix();
     const Mat E = (Mat_<double>(3, 3) << 0, -1, 0, 1, 0, 0, 0, 0, 0);
     Mat R, t;
-    expectErrorNaming([&] { cv::rcme::recoverPose(Mat::zeros(3, 3, CV_64F), p1, p2, K, R, t); },
-                      "E");
+    const Mat nanE = (Mat_<double>(3, 3) << 0, -1, 0, 1, 0, 0, 0, 0, NAN);
+    expectErrorNaming([&] { cv::rcme::recoverPose(nanE, p1, p2, K, R, t); }, "E");
     expectErrorNaming([&] { cv::rcme::recoverPose(Mat::eye(2, 3, CV_64F), p1, p2, K, R, t); }, "E");
     expectErrorNaming([&] { cv::rcme::recoverPose(E, p1, p2, Mat(), R, t); }, "cameraMatrix");
     expectErrorNaming([&] { cv::rcme::recoverPose(E, p1, randomPoints(10, 3), K, R, t); },
@@ -297,6 +330,39 @@ TEST(Rcme_BadInput, recover_pose_from_e_checks_its_arguments)
     Mat wrongMask(10, 1, CV_8U, Scalar(1));
     expectErrorNaming([&] { cv::rcme::recoverPose(E, p1, p2, K, R, t, wrongMask); }, "mask");
     expectErrorNaming([&] { cv::rcme::recoverPose(E, p1, p2, R, t, 0.0, Point2d()); }, "focal");
+}
+
+// 10^7 exact iterations would take minutes; the budget stops every method early with the best
+// model so far and its status: success on a clean scene, poor quality input (saying why) on
+// random points.
+TEST(Rcme_BadInput, time_budget_stops_every_method_with_the_best_so_far)
+{
+    const SyntheticScene clean = genericTestScene(11, 0.8, 200);
+    for (Method method :
+         {METHOD_STANDARD, METHOD_RCME, METHOD_PRCME, METHOD_MLESAC, METHOD_COV_RANSAC}) {
+        SCOPED_TRACE(method);
+        Params params;
+        params.method = method;
+        params.maxIterations = 10000000;
+        params.exactIterations = true;
+        params.timeBudget = 0.05;
+        const Report good =
+            estimateRelativeMotion(clean.points1, clean.points2, clean.cameraMatrix, params);
+        EXPECT_LT(good.iterations, params.maxIterations);
+        EXPECT_GT(good.iterations, 0);
+        EXPECT_EQ(good.status, STATUS_SUCCESS) << good.message;
+        EXPECT_LT(compareMotion(good.R, good.t, clean.R, clean.t).rotationDeg, 1.0);
+
+        const Report bad = estimateRelativeMotion(randomPoints(200, 3), randomPoints(200, 4),
+                                                  cameraMatrix(), params);
+        EXPECT_LT(bad.iterations, params.maxIterations);
+        EXPECT_EQ(bad.status, STATUS_POOR_QUALITY_INPUT);
+        EXPECT_NE(bad.message.find("timeBudget"), std::string::npos) << bad.message;
+    }
+    Params nan;
+    nan.timeBudget = std::numeric_limits<double>::quiet_NaN();
+    expectErrorNaming([&] { estimateRelativeMotion(clean.points1, clean.points2, Mat(), nan); },
+                      "timeBudget");
 }
 
 TEST(Rcme_BadInput, status_names)

@@ -17,13 +17,11 @@
 namespace rcme_fuzz {
 
 //! At most this many correspondences per view, so that one execution stays in milliseconds.
-constexpr size_t kMaxPoints = 200;
+constexpr size_t kMaxPoints = 32;
 
-//! Number of bits of FuzzCase::calls.
-constexpr int kNumCalls = 13;
+constexpr int kNumCalls = 19;
 
-//! Bits of FuzzCase::calls: the public functions one execution calls.
-enum Call : uint16_t
+enum Call : uint32_t
 {
     CALL_ESTIMATE_RELATIVE_MOTION = 1 << 0,
     CALL_FUNDAMENTAL_PARAMS = 1 << 1,
@@ -38,10 +36,19 @@ enum Call : uint16_t
     CALL_RECOVER_POSE_FROM_E_FOCAL = 1 << 10,
     CALL_GENERATE_SCENE = 1 << 11,
     CALL_PARAMS_FROM_USAC = 1 << 12,
+    CALL_FUNDAMENTAL_MASK_FIRST = 1 << 13,
+    CALL_FUNDAMENTAL_USAC = 1 << 14,
+    CALL_ESSENTIAL_TWO_CAMERAS = 1 << 15,
+    CALL_ESSENTIAL_USAC = 1 << 16,
+    CALL_RECOVER_POSE_TWO_CAMERAS = 1 << 17,
+    CALL_RECOVER_POSE_DISTANCE = 1 << 18,
     CALL_ALL = (1 << kNumCalls) - 1
 };
 
-//! Bits of FuzzCase::flags.
+//! At most this many of the requested calls run per input (the lowest set bits), so that one
+//! execution stays cheap whatever the mutation does to the call bits.
+constexpr int kMaxCallsPerInput = 2;
+
 enum Flag : uint8_t
 {
     FLAG_EXACT_ITERATIONS = 1 << 0,
@@ -56,7 +63,7 @@ enum Flag : uint8_t
 //! values most of the time and to invalid ones (to exercise the argument checks) otherwise.
 struct FuzzCase
 {
-    uint16_t calls = 0;
+    uint32_t calls = 0;
     uint8_t flags = 0;
     uint8_t layouts = 0;       //!< low nibble: layout of points1, high nibble: of points2
     uint8_t method = 0;        //!< Params::method (and the drop-ins' method flag)
@@ -86,6 +93,8 @@ struct FuzzCase
     double sceneDepth = 0, sceneWidth = 0, sceneHeight = 0;
     double usacConfidence = 0, usacThreshold = 0;
     float essential[9] = {};
+    float distortion[5] = {}; //!< distortion coefficients of the two-camera forms
+    double distanceThresh = 0;
     float motion[12] = {}; //!< a rotation (row-major) and a translation for compareMotion
     uint16_t numPoints1 = 0, numPoints2 = 0;
     std::vector<float> coords1, coords2; //!< x, y interleaved
@@ -194,6 +203,9 @@ template <typename Archive, typename Case> void transfer(Archive& a, Case& c)
         a(v);
     for (auto& v : c.motion)
         a(v);
+    for (auto& v : c.distortion)
+        a(v);
+    a(c.distanceThresh);
     a(c.numPoints1);
     a(c.numPoints2);
     a.floats(c.coords1, 2 * std::min<size_t>(c.numPoints1, kMaxPoints));

@@ -49,11 +49,14 @@ Method pickMethod(uint8_t code)
     return static_cast<Method>(kMethods[code % 8]);
 }
 
-// The drop-ins also take OpenCV's own flags.
+// The drop-ins also take every OpenCV method flag.
 int pickMethodFlag(uint8_t code)
 {
+    static const int kOpenCVFlags[] = {FM_7POINT, FM_8POINT,     FM_LMEDS,      FM_RANSAC,
+                                       RHO,       USAC_DEFAULT,  USAC_PARALLEL, USAC_FM_8PTS,
+                                       USAC_FAST, USAC_ACCURATE, USAC_PROSAC,   USAC_MAGSAC};
     if (code % 8 == 5)
-        return (code & 0x80) ? FM_RANSAC : RANSAC;
+        return kOpenCVFlags[(code >> 3) % 12];
     return pickMethod(code);
 }
 
@@ -70,7 +73,7 @@ Params makeParams(const FuzzCase& c, const Mat& quality)
     p.exactIterations = c.flags & rcme_fuzz::FLAG_EXACT_ITERATIONS;
     p.randomGeneratorState = c.seed;
     p.refine = c.flags & rcme_fuzz::FLAG_REFINE;
-    p.refineIterations = pickCount(c.refineIterations, 4, 0, {-1, 1001});
+    p.refineIterations = pickCount(c.refineIterations, 3, 0, {-1, 1001});
     p.alpha = c.alpha;
     p.entropyThreshold = c.entropyThreshold;
     p.inlierRatioFactor = c.inlierRatioFactor;
@@ -80,6 +83,8 @@ Params makeParams(const FuzzCase& c, const Mat& quality)
     p.sampleLeverage = c.flags & rcme_fuzz::FLAG_SAMPLE_LEVERAGE;
     p.earlyTerminationEntropy = c.earlyTerminationEntropy;
     p.localOptimization = c.flags & rcme_fuzz::FLAG_LOCAL_OPTIMIZATION;
+    // A tiny budget now and then: the loop must stop early and still keep the output contract.
+    p.timeBudget = (c.refineIterations & 0x80) ? 1e-4 : 0.0;
     p.matchQuality = quality;
     return p;
 }
@@ -241,6 +246,21 @@ template <typename Estimate> void guardedEstimate(int n, Estimate&& estimate)
     });
 }
 
+// OpenCV's enum has no fixed type: only 0..3 are values of it (anything else is undefined
+// behaviour in the caller, not a bad input).
+UsacParams makeUsacParams(const FuzzCase& c)
+{
+    UsacParams usac;
+    usac.confidence = c.usacConfidence;
+    usac.threshold = c.usacThreshold;
+    // Bounded like Params::maxIterations above, invalid counts included.
+    usac.maxIterations = c.usacMaxIterations % 17;
+    usac.randomGeneratorState = c.seed;
+    usac.sampler = static_cast<SamplingMethod>(c.usacSampler & 3);
+    usac.score = static_cast<ScoreMethod>((c.usacSampler >> 2) & 3);
+    return usac;
+}
+
 struct Outputs
 {
     Mat E, R, t; //!< from the first successful calibrated estimate
@@ -311,6 +331,49 @@ void callEstimators(const FuzzCase& c, const PointInput& p1, const PointInput& p
                                        params.confidence, params.threshold, dropInIters, mask);
             checkMask(mask, n, false);
         });
+    // The forms without maxIters run up to 1000 iterations: small inputs only.
+    const bool small = n <= 20;
+    if ((c.calls & rcme_fuzz::CALL_FUNDAMENTAL_MASK_FIRST) && small)
+        guarded([&] {
+            Mat mask;
+            const Mat F = cv::rcme::findFundamentalMat(p1.array(), p2.array(), mask, methodFlag,
+                                                       params.threshold, params.confidence);
+            checkMask(mask, n, F.empty());
+        });
+    const UsacParams usac = makeUsacParams(c);
+    if (c.calls & rcme_fuzz::CALL_FUNDAMENTAL_USAC)
+        guarded([&] {
+            Mat mask;
+            const Mat F = cv::rcme::findFundamentalMat(p1.array(), p2.array(), mask, usac);
+            checkMask(mask, n, F.empty());
+            checkModel(F, F.empty() ? STATUS_POOR_QUALITY_INPUT : STATUS_SUCCESS);
+        });
+    const Mat distortion(1, 5, CV_32F, const_cast<float*>(c.distortion));
+    if ((c.calls & rcme_fuzz::CALL_ESSENTIAL_TWO_CAMERAS) && small)
+        guarded([&] {
+            Mat mask;
+            const Mat E =
+                cv::rcme::findEssentialMat(p1.array(), p2.array(), K, distortion, K, distortion,
+                                           methodFlag, params.confidence, params.threshold, mask);
+            checkMask(mask, n, E.empty());
+        });
+    if (c.calls & rcme_fuzz::CALL_ESSENTIAL_USAC)
+        guarded([&] {
+            Mat mask;
+            const Mat E = cv::rcme::findEssentialMat(p1.array(), p2.array(), K, K, distortion,
+                                                     distortion, mask, usac);
+            checkMask(mask, n, E.empty());
+        });
+    if ((c.calls & rcme_fuzz::CALL_RECOVER_POSE_TWO_CAMERAS) && small)
+        guarded([&] {
+            Mat E, R, t, mask;
+            const int inliers =
+                cv::rcme::recoverPose(p1.array(), p2.array(), K, distortion, K, distortion, E, R, t,
+                                      methodFlag, params.confidence, params.threshold, mask);
+            checkMask(mask, n, inliers == 0);
+            FUZZ_REQUIRE(inliers == countNonZero(mask));
+            FUZZ_REQUIRE(R.rows == 3 && R.cols == 3 && checkRange(R) && checkRange(t));
+        });
     if (c.calls & rcme_fuzz::CALL_RECOVER_POSE_PARAMS)
         guarded([&] {
             Mat E, R, t, mask, covariance;
@@ -368,6 +431,14 @@ void callPoseFromEssential(const FuzzCase& c, const PointInput& p1, const PointI
             const int count = cv::rcme::recoverPose(E, p1.array(), p2.array(), K, R, t, mask);
             FUZZ_REQUIRE(count >= 0 && count <= n);
         });
+    if (c.calls & rcme_fuzz::CALL_RECOVER_POSE_DISTANCE)
+        guarded([&] {
+            Mat R, t, points, mask = makeMaskInput(c, n);
+            const int count = cv::rcme::recoverPose(E, p1.array(), p2.array(), K, R, t,
+                                                    c.distanceThresh, mask, points);
+            FUZZ_REQUIRE(count >= 0 && count <= n);
+            FUZZ_REQUIRE(points.empty() || (points.rows == 4 && points.cols == n));
+        });
     if (c.calls & rcme_fuzz::CALL_RECOVER_POSE_FROM_E_FOCAL)
         guarded([&] {
             Mat R, t, mask = makeMaskInput(c, n);
@@ -389,7 +460,7 @@ void callSceneAndMotion(const FuzzCase& c, const Outputs& out)
         guarded([&] {
             SceneParams sp;
             sp.kind = static_cast<SceneKind>(c.sceneKind % 3);
-            sp.numPoints = c.sceneNumPoints % 1024; // keeps an execution fast
+            sp.numPoints = c.sceneNumPoints % 128; // keeps an execution fast
             sp.inlierRatio = c.sceneInlierRatio;
             sp.sigma = c.sceneSigma;
             sp.seed = c.seed;
@@ -418,14 +489,9 @@ void callParamsFromUsac(const FuzzCase& c)
 {
     if (!(c.calls & rcme_fuzz::CALL_PARAMS_FROM_USAC))
         return;
-    UsacParams usac;
-    usac.confidence = c.usacConfidence;
-    usac.threshold = c.usacThreshold;
-    usac.maxIterations = c.usacMaxIterations;
-    usac.randomGeneratorState = c.seed;
-    // OpenCV's enum has no fixed type: only 0..3 are values of it (anything else is undefined
-    // behaviour in the caller, not a bad input); 1 and 2 (NAPSAC) have no counterpart in rcme.
-    usac.sampler = static_cast<SamplingMethod>(c.usacSampler & 3);
+    UsacParams usac = makeUsacParams(c);
+    usac.maxIterations = c.usacMaxIterations; // only copied here, never run
+    // 1 and 2 (NAPSAC) have no counterpart in Params(UsacParams): StsBadArg.
     guarded([&] {
         const Params p(usac);
         FUZZ_REQUIRE(p.maxIterations == usac.maxIterations);
@@ -447,6 +513,14 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
     FuzzCase c;
     rcme_fuzz::ByteReader reader(data, size);
     rcme_fuzz::transfer(reader, c);
+    c.calls &= rcme_fuzz::CALL_ALL;
+    for (int kept = 0, bit = 0; bit < rcme_fuzz::kNumCalls; ++bit)
+        if ((c.calls >> bit) & 1u) {
+            if (kept == rcme_fuzz::kMaxCallsPerInput)
+                c.calls &= ~(1u << bit);
+            else
+                ++kept;
+        }
 
     const PointInput p1 = makePoints(c.coords1, c.scaleExponent, c.layouts & 0x0F);
     const PointInput p2 = (c.flags & rcme_fuzz::FLAG_SECOND_VIEW_IS_FIRST)

@@ -32,7 +32,8 @@ FuzzCase sceneCase(const cv::rcme::SceneParams& sp)
     c.qualityMode = 0;
     c.essentialMode = 0;
     c.seed = sp.seed;
-    c.usacMaxIterations = 100;
+    c.usacMaxIterations = 16;
+    c.distanceThresh = 50.0;
     c.sceneKind = static_cast<uint8_t>(sp.kind);
     c.sceneNumPoints = 50;
     c.sceneImageWidth = 640;
@@ -103,7 +104,7 @@ int main(int argc, char** argv)
         for (uint8_t method = 0; method < 6; ++method) {
             cv::rcme::SceneParams sp;
             sp.kind = static_cast<cv::rcme::SceneKind>(kind);
-            sp.numPoints = 60;
+            sp.numPoints = 32;
             sp.inlierRatio = 0.7;
             sp.seed = 10 * kind + method;
             FuzzCase c = sceneCase(sp);
@@ -112,9 +113,9 @@ int main(int argc, char** argv)
             c.sampler = static_cast<uint8_t>(kind);      // uniform, PROSAC
             if (method == 2)
                 c.flags |= rcme_fuzz::FLAG_LOCAL_OPTIMIZATION;
-            // One function per seed (each one twice over the 24 seeds): an execution stays short,
-            // and mutating the call bits combines them.
-            c.calls = static_cast<uint16_t>(1 << (files % rcme_fuzz::kNumCalls));
+            // One function per seed (each one at least once over the 24 seeds): an execution stays
+            // short, and mutating the call bits combines them.
+            c.calls = static_cast<uint32_t>(1u << (files % rcme_fuzz::kNumCalls));
             write(folder, std::string(kind ? "generic_" : "corridor_") + methodNames[method], c);
             ++files;
 
@@ -122,7 +123,7 @@ int main(int argc, char** argv)
             c.cameraMatrixMode = 0;
             c.solver = static_cast<uint8_t>(method % 2);
             c.layouts = static_cast<uint8_t>(0x10 * (method % 7) + (method + 1) % 7);
-            c.calls = static_cast<uint16_t>(1 << (files % rcme_fuzz::kNumCalls));
+            c.calls = static_cast<uint32_t>(1u << (files % rcme_fuzz::kNumCalls));
             write(folder,
                   std::string(kind ? "generic_" : "corridor_") + methodNames[method] + "_nok", c);
             ++files;

@@ -178,6 +178,8 @@ struct EstimatorComponents
     std::unique_ptr<Refiner> localOptimizer;
     //! Evaluate hypotheses on several threads (Params::isParallel); the result is the same.
     bool parallel = false;
+    //! cv::getTickCount() value at which the hypothesis loop stops (Params::timeBudget); 0: none.
+    int64 deadline = 0;
 };
 
 /** The inlier count that chance alone exceeds with probability at most 5 % over a whole run: a

@@ -157,6 +157,12 @@ public:
     {
         int iteration = 0;
         while (iteration < c_.termination->iterationBound()) {
+            // Checked per batch (one iteration when sequential): a clock read is cheap next to
+            // a hypothesis.
+            if (c_.deadline != 0 && getTickCount() >= c_.deadline) {
+                result.outOfTime = true;
+                break;
+            }
             const int count = std::min(batch_, c_.termination->iterationBound() - iteration);
             evaluate(iteration, count);
             for (int k = 0; k < count && iteration < c_.termination->iterationBound();
@@ -299,7 +305,8 @@ RansacResult runRansac(const TwoViewData& data, EstimatorComponents& c)
         } else {
             result.status = STATUS_POOR_QUALITY_INPUT;
             result.message =
-                cv::format("no hypothesis passed the acceptance tests in %d iterations", iteration);
+                cv::format("no hypothesis passed the acceptance tests in %d iterations%s",
+                           iteration, result.outOfTime ? " (Params.timeBudget ran out)" : "");
         }
         return result;
     }

@@ -23,6 +23,7 @@ struct RansacResult
     std::vector<uchar> mask; //!< inliers of the returned model, always data.size()
     int iterations = 0;
     int degenerateSamples = 0;
+    bool outOfTime = false;   //!< the loop stopped at EstimatorComponents::deadline
     long long hypotheses = 0; //!< models the solver returned (several per sample for 7/5-point)
     //! Mean number of correspondences whose residual was evaluated per hypothesis, by the
     //! verifiers and by scoring; NaN when there was no hypothesis.

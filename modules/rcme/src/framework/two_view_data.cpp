@@ -61,9 +61,12 @@ std::vector<Eigen::Vector2d> readPoints(InputArray points, const char* argName)
     case CV_32S:
         appendPoints<int>(m, count, out, argName);
         break;
-    default:
-        CV_Error(Error::StsBadArg,
-                 cv::format("%s must have depth CV_32F, CV_64F or CV_32S", argName));
+    default: { // the other depths OpenCV (and the Python module) accept: 8U/8S/16U/16S/16F
+        Mat m64;
+        m.convertTo(m64, CV_64F);
+        appendPoints<double>(m64, count, out, argName);
+        break;
+    }
     }
     return out;
 }
@@ -77,9 +80,7 @@ bool readCameraMatrix(InputArray cameraMatrix, const char* argName, Eigen::Matri
         CV_Error(Error::StsBadArg, cv::format("%s must be 3x3 with one channel, got %dx%d with %d "
                                               "channels",
                                               argName, m.rows, m.cols, m.channels()));
-    if (m.depth() != CV_32F && m.depth() != CV_64F)
-        CV_Error(Error::StsBadArg, cv::format("%s must have depth CV_32F or CV_64F", argName));
-    Mat k64;
+    Mat k64; // any depth, as OpenCV and the Python module (an int32 K is common)
     m.convertTo(k64, CV_64F);
     for (int r = 0; r < 3; ++r)
         for (int c = 0; c < 3; ++c)
@@ -93,6 +94,13 @@ bool readCameraMatrix(InputArray cameraMatrix, const char* argName, Eigen::Matri
     if (!(std::abs(K.determinant()) > 1e-12 * std::pow(K.topLeftCorner<2, 2>().norm(), 2)) ||
         K(0, 0) == 0 || K(1, 1) == 0)
         CV_Error(Error::StsBadArg, cv::format("%s is singular (zero focal length)", argName));
+    // A negative focal length mirrors the image: points behind the camera would pass
+    // cheirality, so the motion would come out wrong without any error.
+    if (K(0, 0) < 0 || K(1, 1) < 0)
+        CV_Error(Error::StsBadArg,
+                 cv::format("%s has a negative focal length (fx = %g, fy = %g); pass the "
+                            "intrinsics of a camera with positive focal lengths",
+                            argName, K(0, 0), K(1, 1)));
     return true;
 }
 
@@ -146,6 +154,7 @@ void validateParams(const Params& p)
                "Params.sampleFitIterations must be in [0, 100]");
     checkRange(std::isfinite(p.earlyTerminationEntropy),
                "Params.earlyTerminationEntropy must be finite (<= 0: off)");
+    checkRange(!std::isnan(p.timeBudget), "Params.timeBudget must be a number (<= 0: none)");
 }
 
 double inlierThreshold(const Params& params)

@@ -25,14 +25,14 @@ struct TwoViewData
     int size() const { return static_cast<int>(points1.size()); }
 };
 
-/** Reads one point set as OpenCV accepts it (Nx2 1-channel, Nx1 or 1xN 2-channel; CV_32S,
-CV_32F or CV_64F; std::vector<Point2f/2d>). Throws StsBadArg naming `argName` when the layout is
+/** Reads one point set as OpenCV accepts it (Nx2 1-channel, Nx1 or 1xN 2-channel; any depth;
+std::vector<Point2f/2d>). Throws StsBadArg naming `argName` when the layout is
 wrong, the set is empty, or a coordinate is not finite. */
 std::vector<Eigen::Vector2d> readPoints(InputArray points, const char* argName);
 
 /** Reads an intrinsic matrix; returns false when `cameraMatrix` is empty (uncalibrated). Throws
-StsBadArg naming `argName` unless it is a finite, invertible 3x3 upper-triangular-like matrix
-with last row (0, 0, k) and k != 0 (the matrix is divided by k). */
+StsBadArg naming `argName` unless it is a finite, invertible 3x3 matrix (any depth) with last
+row (0, 0, k), k != 0 (the matrix is divided by k), and positive focal lengths. */
 bool readCameraMatrix(InputArray cameraMatrix, const char* argName, Eigen::Matrix3d& K);
 
 //! Builds K from OpenCV's focal length / principal point form; throws naming "focal" or "pp".

@@ -47,15 +47,17 @@ matrix (see estimateRelativeMotion). */
 CV_EXPORTS_W Mat findFundamentalMat(InputArray points1, InputArray points2, InputArray cameraMatrix,
                                     const Params& params, OutputArray mask, CV_OUT Status& status);
 
-/** @brief Drop-in for cv::findFundamentalMat.
+/** @brief Drop-in for cv::findFundamentalMat (every OpenCV 4.6 form has a twin below, with
+OpenCV's argument order and defaults).
 
-@param method cv::FM_RANSAC (mapped to #METHOD_STANDARD) or a #Method value; other OpenCV
-flags raise StsBadArg.
-@param ransacReprojThreshold inlier threshold in pixels (Params::threshold).
-@param confidence Params::confidence.
-@param maxIters Params::maxIterations.
-@param mask output Nx1 CV_8U inlier mask.
-@return F, or an empty matrix when the status is not #STATUS_SUCCESS (as OpenCV does).
+@param method an OpenCV flag (FM_7POINT, FM_8POINT, FM_LMEDS, FM_RANSAC, RHO, USAC_*), mapped to
+the rcme method of the same intent (README, "Drop-in"), or a #Method value.
+@param ransacReprojThreshold inlier threshold in pixels; <= 0 or not finite: 3, as OpenCV.
+@param confidence in (0, 1); outside it 0.99, as OpenCV (NaN raises StsBadArg).
+@param maxIters iteration cap; <= 0 runs one iteration, as OpenCV.
+@param mask output Nx1 CV_8U inlier mask, always written (zeros on failure).
+@return F, or an empty matrix when no trustworthy F was found (OpenCV's "nothing found"): the
+OpenCV forms never throw on well-formed input; the #Params forms tell why.
 */
 CV_EXPORTS_W Mat findFundamentalMat(InputArray points1, InputArray points2, int method,
                                     double ransacReprojThreshold, double confidence, int maxIters,
@@ -66,6 +68,19 @@ CV_EXPORTS_W Mat findFundamentalMat(InputArray points1, InputArray points2, int 
 CV_EXPORTS_W Mat findFundamentalMat(InputArray points1, InputArray points2, int method = FM_RANSAC,
                                     double ransacReprojThreshold = 3., double confidence = 0.99,
                                     OutputArray mask = noArray());
+
+/** @overload The mask-first form. Not wrapped for Python, as in calib3d (it would clash with the
+form above). */
+CV_EXPORTS Mat findFundamentalMat(InputArray points1, InputArray points2, OutputArray mask,
+                                  int method = FM_RANSAC, double ransacReprojThreshold = 3.,
+                                  double confidence = 0.99);
+
+/** @overload With cv::UsacParams: confidence (outside (0, 1): 0.99), maxIterations (<= 0: one),
+threshold (<= 0: 1.5, UsacParams' default), randomGeneratorState, isParallel, sampler (NAPSAC
+samplers run uniform sampling) and score (SCORE_METHOD_MAGSAC selects #METHOD_MLESAC) are used;
+the rest has no counterpart. */
+CV_EXPORTS_W Mat findFundamentalMat(InputArray points1, InputArray points2, OutputArray mask,
+                                    const UsacParams& params);
 
 /** @brief Essential matrix with an explicit status.
 
@@ -78,21 +93,44 @@ CV_EXPORTS_W Mat findEssentialMat(InputArray points1, InputArray points2, InputA
 
 /** @brief Drop-in for cv::findEssentialMat.
 
-@param method cv::RANSAC (mapped to #METHOD_STANDARD) or a #Method value.
-@param prob Params::confidence.
-@param threshold inlier threshold in pixels.
-@param maxIters Params::maxIterations.
-@return E, or an empty matrix on failure.
+@param method as in findFundamentalMat's drop-in.
+@param prob confidence, in (0, 1) (outside it StsBadArg, as OpenCV).
+@param threshold inlier threshold in pixels; <= 0 or not finite: 1, OpenCV's default.
+@param maxIters iteration cap; <= 0 runs one iteration, as OpenCV.
+@return E, or an empty matrix on failure (never an exception on well-formed input).
 */
 CV_EXPORTS_W Mat findEssentialMat(InputArray points1, InputArray points2, InputArray cameraMatrix,
                                   int method = RANSAC, double prob = 0.999, double threshold = 1.0,
                                   int maxIters = 1000, OutputArray mask = noArray());
+
+//! @overload Without maxIters (1000), the form of OpenCV's documentation example; not wrapped.
+CV_EXPORTS Mat findEssentialMat(InputArray points1, InputArray points2, InputArray cameraMatrix,
+                                int method, double prob, double threshold, OutputArray mask);
 
 //! @overload Camera matrix given by focal length and principal point, as in OpenCV.
 CV_EXPORTS_W Mat findEssentialMat(InputArray points1, InputArray points2, double focal = 1.0,
                                   Point2d pp = Point2d(0, 0), int method = RANSAC,
                                   double prob = 0.999, double threshold = 1.0, int maxIters = 1000,
                                   OutputArray mask = noArray());
+
+//! @overload Focal length and principal point, without maxIters (1000); not wrapped.
+CV_EXPORTS Mat findEssentialMat(InputArray points1, InputArray points2, double focal, Point2d pp,
+                                int method, double prob, double threshold, OutputArray mask);
+
+/** @overload Two cameras with distortion, as OpenCV does it: both point sets are undistorted
+(cv::undistortPoints) and mapped back to pixels by the mean of the two camera matrices, which is
+then the camera matrix of the estimate (so the threshold stays in pixels). */
+CV_EXPORTS_W Mat findEssentialMat(InputArray points1, InputArray points2, InputArray cameraMatrix1,
+                                  InputArray distCoeffs1, InputArray cameraMatrix2,
+                                  InputArray distCoeffs2, int method = RANSAC, double prob = 0.999,
+                                  double threshold = 1.0, OutputArray mask = noArray());
+
+/** @overload Two cameras with distortion and cv::UsacParams (note OpenCV's argument order: both
+camera matrices, then both distortion vectors); UsacParams as in findFundamentalMat. */
+CV_EXPORTS_W Mat findEssentialMat(InputArray points1, InputArray points2, InputArray cameraMatrix1,
+                                  InputArray cameraMatrix2, InputArray dist_coeff1,
+                                  InputArray dist_coeff2, OutputArray mask,
+                                  const UsacParams& params);
 
 /** @brief Estimates E robustly and recovers the motion, with status and covariance.
 
@@ -110,9 +148,26 @@ CV_EXPORTS_W int recoverPose(InputArray points1, InputArray points2, InputArray 
                              OutputArray mask, CV_OUT Status& status,
                              OutputArray covariance = noArray());
 
+/** @brief Drop-in for cv::recoverPose of two cameras with distortion: estimates E robustly
+(as the two-camera findEssentialMat) and recovers the motion from it.
+
+@param E output essential matrix, @param R output rotation, @param t output unit translation.
+@param method, prob, threshold as in findEssentialMat.
+@param mask output Nx1 CV_8U mask of the inliers that pass cheirality.
+@return that number; on failure 0 with E empty, R = identity, t = 0 and a zero mask.
+*/
+CV_EXPORTS_W int recoverPose(InputArray points1, InputArray points2, InputArray cameraMatrix1,
+                             InputArray distCoeffs1, InputArray cameraMatrix2,
+                             InputArray distCoeffs2, OutputArray E, OutputArray R, OutputArray t,
+                             int method = RANSAC, double prob = 0.999, double threshold = 1.0,
+                             InputOutputArray mask = noArray());
+
 /** @brief Drop-in for cv::recoverPose from a known essential matrix: decomposes E and keeps the
 (R, t) that puts the most points in front of both cameras.
 
+@param E 3x3 essential matrix. An empty (or all-zero) E, what findEssentialMat returns when it
+finds nothing, gives 0 with R = identity, t = 0 and a zero mask, so that OpenCV code keeps
+running on a bad frame (cv::recoverPose would throw).
 @param mask input/output: on input, non-zero entries select the points to use (all when empty);
 on output, the selected points that pass cheirality.
 @return the number of points that pass cheirality.
@@ -125,6 +180,15 @@ CV_EXPORTS_W int recoverPose(InputArray E, InputArray points1, InputArray points
 CV_EXPORTS_W int recoverPose(InputArray E, InputArray points1, InputArray points2, OutputArray R,
                              OutputArray t, double focal = 1.0, Point2d pp = Point2d(0, 0),
                              InputOutputArray mask = noArray());
+
+/** @overload Points count only when they triangulate closer than distanceThresh (in units of the
+baseline |t| = 1) in front of both cameras; triangulatedPoints receives the 4xN homogeneous
+points (CV_64F, first camera frame, normalized coordinates) of the chosen decomposition, as
+cv::recoverPose gives them. */
+CV_EXPORTS_W int recoverPose(InputArray E, InputArray points1, InputArray points2,
+                             InputArray cameraMatrix, OutputArray R, OutputArray t,
+                             double distanceThresh, InputOutputArray mask = noArray(),
+                             OutputArray triangulatedPoints = noArray());
 
 /** @brief The 6x6 covariance of the relative pose (rotation, translation) from the 5x5 tangent
 covariance of Report::covariance, for a pose graph (GTSAM's Pose3 convention).

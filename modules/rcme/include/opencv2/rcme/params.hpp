@@ -169,6 +169,12 @@ struct CV_EXPORTS_W_SIMPLE Params
     depends on earlier hypotheses (candidate set, ties, iteration bound, RCME's size test, SPRT)
     is decided in iteration order. Default false. */
     CV_PROP_RW bool isParallel;
+    /** Wall-time budget of one call, in seconds; <= 0 (default): none. When it runs out the
+    hypothesis loop stops and the best model found so far goes on to refinement and the final
+    tests, so the status says whether it can be trusted (#STATUS_POOR_QUALITY_INPUT when there
+    is none, with a message saying the budget ran out). Refinement and the final tests are not
+    cut short, so a call can overrun the budget by their time (milliseconds). */
+    CV_PROP_RW double timeBudget;
 };
 
 /** @brief Everything an estimation produced, for callers who want more than the model.

@@ -28,6 +28,7 @@
 #include <functional>
 #include <sstream>
 #include <string>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -283,16 +284,23 @@ public:
 
     template <class M> Fields& plain(const char* name, M T::*member, const char* doc = "")
     {
-        cls_.def_readwrite(name, member, doc);
+        const std::string field = qualified(name);
+        cls_.def_property(
+            name, [member](const T& self) { return self.*member; },
+            [member, field](T& self, py::object v) { self.*member = castField<M>(v, field); }, doc);
         names_.emplace_back(name);
         return *this;
     }
 
     template <class E> Fields& enumInt(const char* name, E T::*member, const char* doc = "")
     {
+        const std::string field = qualified(name);
         cls_.def_property(
             name, [member](const T& self) { return static_cast<int>(self.*member); },
-            [member](T& self, int v) { self.*member = static_cast<E>(v); }, doc);
+            [member, field](T& self, py::object v) {
+                self.*member = static_cast<E>(castField<int>(v, field));
+            },
+            doc);
         names_.emplace_back(name);
         return *this;
     }
@@ -350,17 +358,40 @@ public:
     }
 
 private:
+    std::string qualified(const char* name) const
+    {
+        return py::cast<std::string>(cls_.attr("__name__")) + "." + name;
+    }
+
+    /* A wrong type names the field and the type given (pybind11's own message would print the
+    whole struct and every overload of the setter). */
+    template <class V> static V castField(const py::object& value, const std::string& field)
+    {
+        try {
+            return py::cast<V>(value);
+        } catch (const py::cast_error&) {
+            const char* expected = std::is_same<V, bool>::value          ? "a bool"
+                                   : std::is_integral<V>::value          ? "an int"
+                                   : std::is_floating_point<V>::value    ? "a float"
+                                   : std::is_same<V, std::string>::value ? "a str"
+                                                                         : "another type";
+            throw py::type_error(field + " must be " + expected + ", got " +
+                                 py::cast<std::string>(value.get_type().attr("__name__")) + " (" +
+                                 std::string(py::repr(value)) + ")");
+        }
+    }
+
     py::class_<T>& cls_;
     std::vector<std::string> names_;
 };
 
-//! Params.fromUsacParams(usacParams): any object with cv2.UsacParams' attributes (duck typing, so
-//! that a cv2.UsacParams from the installed cv2 works without this module depending on cv2).
-Params paramsFromUsac(const py::object& u)
+//! A cv::UsacParams from any object with cv2.UsacParams' attributes (duck typing, so that a
+//! cv2.UsacParams from the installed cv2 works without this module depending on cv2).
+cv::UsacParams usacFromPython(const py::object& u, const char* func, const char* name)
 {
     if (!py::hasattr(u, "confidence") || !py::hasattr(u, "maxIterations") ||
         !py::hasattr(u, "threshold"))
-        throw py::type_error("fromUsacParams: usacParams must be a cv2.UsacParams");
+        throw py::type_error(std::string(func) + ": " + name + " must be a cv2.UsacParams");
     cv::UsacParams usac;
     auto get = [&u](const char* name, auto& field) {
         if (py::hasattr(u, name))
@@ -381,7 +412,13 @@ Params paramsFromUsac(const py::object& u)
     getEnum("sampler", usac.sampler);
     getEnum("score", usac.score);
     get("threshold", usac.threshold);
-    return Params(usac);
+    return usac;
+}
+
+//! Params.fromUsacParams(usacParams).
+Params paramsFromUsac(const py::object& u)
+{
+    return Params(usacFromPython(u, "fromUsacParams", "usacParams"));
 }
 
 // ------------------------------------------------------------------------------------------
@@ -398,22 +435,41 @@ const char* const kDocFindFundamentalCalibrated =
 const char* const kDocFindFundamentalDropIn =
     "findFundamentalMat(points1, points2, method, ransacReprojThreshold, confidence, maxIters"
     "[, mask]) -> retval, mask\n"
-    ".   @brief Drop-in for cv2.findFundamentalMat; method is cv2.FM_RANSAC or a METHOD_* value.";
+    ".   @brief Drop-in for cv2.findFundamentalMat; method: a cv2 flag or METHOD_*.";
 const char* const kDocFindFundamentalDropInDefaults =
     "findFundamentalMat(points1, points2[, method[, ransacReprojThreshold[, confidence[, mask]]]])"
     " -> retval, mask\n"
     ".   @brief Drop-in for cv2.findFundamentalMat with its defaults (FM_RANSAC, 3 px, 0.99).";
+const char* const kDocFindFundamentalUsac =
+    "findFundamentalMat(points1, points2, params[, mask]) -> retval, mask\n"
+    ".   @overload Drop-in for cv2.findFundamentalMat with a cv2.UsacParams.";
 const char* const kDocFindEssentialParams =
     "findEssentialMat(points1, points2, cameraMatrix, params[, mask]) -> retval, mask, status\n"
     ".   @brief Essential matrix with an explicit status.";
 const char* const kDocFindEssentialDropIn =
     "findEssentialMat(points1, points2, cameraMatrix[, method[, prob[, threshold[, maxIters"
     "[, mask]]]]]) -> retval, mask\n"
-    ".   @brief Drop-in for cv2.findEssentialMat; method is cv2.RANSAC or a METHOD_* value.";
+    ".   @brief Drop-in for cv2.findEssentialMat; method: a cv2 flag or METHOD_*.";
 const char* const kDocFindEssentialFocal =
     "findEssentialMat(points1, points2[, focal[, pp[, method[, prob[, threshold[, maxIters"
     "[, mask]]]]]]]) -> retval, mask\n"
     ".   @overload Camera matrix given by focal length and principal point.";
+const char* const kDocFindEssentialTwoCameras =
+    "findEssentialMat(points1, points2, cameraMatrix1, distCoeffs1, cameraMatrix2, distCoeffs2"
+    "[, method[, prob[, threshold[, mask]]]]) -> retval, mask\n"
+    ".   @overload Two cameras with distortion (undistorted as cv2 does).";
+const char* const kDocFindEssentialUsac =
+    "findEssentialMat(points1, points2, cameraMatrix1, cameraMatrix2, dist_coeff1, dist_coeff2, "
+    "params[, mask]) -> retval, mask\n"
+    ".   @overload Two cameras with distortion and a cv2.UsacParams.";
+const char* const kDocRecoverPoseTwoCameras =
+    "recoverPose(points1, points2, cameraMatrix1, distCoeffs1, cameraMatrix2, distCoeffs2[, E[, "
+    "R[, t[, method[, prob[, threshold[, mask]]]]]]]) -> retval, E, R, t, mask\n"
+    ".   @brief Drop-in for cv2.recoverPose of two cameras with distortion.";
+const char* const kDocRecoverPoseDistance =
+    "recoverPose(E, points1, points2, cameraMatrix, distanceThresh[, R[, t[, mask[, "
+    "triangulatedPoints]]]]) -> retval, R, t, mask, triangulatedPoints\n"
+    ".   @overload Points count only closer than distanceThresh; returns the triangulated points.";
 const char* const kDocRecoverPoseParams =
     "recoverPose(points1, points2, cameraMatrix, params[, E[, R[, t[, mask[, covariance]]]]]) "
     "-> retval, E, R, t, mask, status, covariance\n"
@@ -557,7 +613,9 @@ PYBIND11_MODULE(rcme, m)
         .mat("matchQuality", &Params::matchQuality,
              "SAMPLER_PROSAC: one score per correspondence, higher is better; None: sorted")
         .plain("isParallel", &Params::isParallel,
-               "evaluate hypotheses on OpenCV's threads, same result; default False");
+               "evaluate hypotheses on OpenCV's threads, same result; default False")
+        .plain("timeBudget", &Params::timeBudget,
+               "wall-time budget of a call, seconds; <= 0 (default): none");
     paramsFields.addKeywordInit("Params");
     paramsFields.addRepr("Params");
 
@@ -703,6 +761,18 @@ PYBIND11_MODULE(rcme, m)
         py::arg("points1"), py::arg("points2"), py::arg("method") = static_cast<int>(cv::FM_RANSAC),
         py::arg("ransacReprojThreshold") = 3.0, py::arg("confidence") = 0.99,
         py::arg("mask") = py::none(), kDocFindFundamentalDropInDefaults);
+    // Last of its name: it takes any object as params and rejects what is not a UsacParams.
+    m.def(
+        "findFundamentalMat",
+        [](py::object points1, py::object points2, py::object params, py::object mask) {
+            const cv::UsacParams usac = usacFromPython(params, "findFundamentalMat", "params");
+            return runFundamentalDropIn(points1, points2, mask,
+                                        [&](cv::Mat& a, cv::Mat& b, cv::Mat& m) {
+                                            return cv::rcme::findFundamentalMat(a, b, m, usac);
+                                        });
+        },
+        py::arg("points1"), py::arg("points2"), py::arg("params"), py::arg("mask") = py::none(),
+        kDocFindFundamentalUsac);
 
     m.def(
         "findEssentialMat",
@@ -769,6 +839,58 @@ PYBIND11_MODULE(rcme, m)
         py::arg("mask") = py::none(), kDocFindEssentialFocal);
 
     m.def(
+        "findEssentialMat",
+        [](py::object points1, py::object points2, py::object cameraMatrix1, py::object distCoeffs1,
+           py::object cameraMatrix2, py::object distCoeffs2, int method, double prob,
+           double threshold, py::object mask) {
+            const char* f = "findEssentialMat";
+            InMat p1 = toMat(points1, "points1", Conv::Float, f);
+            InMat p2 = toMat(points2, "points2", Conv::Float, f);
+            InMat k1 = toMat(cameraMatrix1, "cameraMatrix1", Conv::Float, f);
+            InMat d1 = toMat(distCoeffs1, "distCoeffs1", Conv::Float, f);
+            InMat k2 = toMat(cameraMatrix2, "cameraMatrix2", Conv::Float, f);
+            InMat d2 = toMat(distCoeffs2, "distCoeffs2", Conv::Float, f);
+            OutMat outMask = toOutMat(mask);
+            cv::Mat E;
+            {
+                py::gil_scoped_release nogil;
+                E = cv::rcme::findEssentialMat(p1.mat, p2.mat, k1.mat, d1.mat, k2.mat, d2.mat,
+                                               method, prob, threshold, outMask.mat);
+            }
+            return py::make_tuple(fromMat(E), finishOut(outMask));
+        },
+        py::arg("points1"), py::arg("points2"), py::arg("cameraMatrix1"), py::arg("distCoeffs1"),
+        py::arg("cameraMatrix2"), py::arg("distCoeffs2"),
+        py::arg("method") = static_cast<int>(cv::RANSAC), py::arg("prob") = 0.999,
+        py::arg("threshold") = 1.0, py::arg("mask") = py::none(), kDocFindEssentialTwoCameras);
+
+    m.def(
+        "findEssentialMat",
+        [](py::object points1, py::object points2, py::object cameraMatrix1,
+           py::object cameraMatrix2, py::object distCoeff1, py::object distCoeff2,
+           py::object params, py::object mask) {
+            const char* f = "findEssentialMat";
+            const cv::UsacParams usac = usacFromPython(params, f, "params");
+            InMat p1 = toMat(points1, "points1", Conv::Float, f);
+            InMat p2 = toMat(points2, "points2", Conv::Float, f);
+            InMat k1 = toMat(cameraMatrix1, "cameraMatrix1", Conv::Float, f);
+            InMat k2 = toMat(cameraMatrix2, "cameraMatrix2", Conv::Float, f);
+            InMat d1 = toMat(distCoeff1, "dist_coeff1", Conv::Float, f);
+            InMat d2 = toMat(distCoeff2, "dist_coeff2", Conv::Float, f);
+            OutMat outMask = toOutMat(mask);
+            cv::Mat E;
+            {
+                py::gil_scoped_release nogil;
+                E = cv::rcme::findEssentialMat(p1.mat, p2.mat, k1.mat, k2.mat, d1.mat, d2.mat,
+                                               outMask.mat, usac);
+            }
+            return py::make_tuple(fromMat(E), finishOut(outMask));
+        },
+        py::arg("points1"), py::arg("points2"), py::arg("cameraMatrix1"), py::arg("cameraMatrix2"),
+        py::arg("dist_coeff1"), py::arg("dist_coeff2"), py::arg("params"),
+        py::arg("mask") = py::none(), kDocFindEssentialUsac);
+
+    m.def(
         "recoverPose",
         [](py::object points1, py::object points2, py::object cameraMatrix, const Params& p,
            py::object E, py::object R, py::object t, py::object mask, py::object covariance) {
@@ -791,6 +913,36 @@ PYBIND11_MODULE(rcme, m)
         py::arg("points1"), py::arg("points2"), py::arg("cameraMatrix"), py::arg("params"),
         py::arg("E") = py::none(), py::arg("R") = py::none(), py::arg("t") = py::none(),
         py::arg("mask") = py::none(), py::arg("covariance") = py::none(), kDocRecoverPoseParams);
+
+    m.def(
+        "recoverPose",
+        [](py::object points1, py::object points2, py::object cameraMatrix1, py::object distCoeffs1,
+           py::object cameraMatrix2, py::object distCoeffs2, py::object E, py::object R,
+           py::object t, int method, double prob, double threshold, py::object mask) {
+            const char* f = "recoverPose";
+            InMat p1 = toMat(points1, "points1", Conv::Float, f);
+            InMat p2 = toMat(points2, "points2", Conv::Float, f);
+            InMat k1 = toMat(cameraMatrix1, "cameraMatrix1", Conv::Float, f);
+            InMat d1 = toMat(distCoeffs1, "distCoeffs1", Conv::Float, f);
+            InMat k2 = toMat(cameraMatrix2, "cameraMatrix2", Conv::Float, f);
+            InMat d2 = toMat(distCoeffs2, "distCoeffs2", Conv::Float, f);
+            OutMat outE = toOutMat(E), outR = toOutMat(R), outT = toOutMat(t);
+            OutMat ioMask = toInOutMat(mask, "mask", f);
+            int retval = 0;
+            {
+                py::gil_scoped_release nogil;
+                retval =
+                    cv::rcme::recoverPose(p1.mat, p2.mat, k1.mat, d1.mat, k2.mat, d2.mat, outE.mat,
+                                          outR.mat, outT.mat, method, prob, threshold, ioMask.mat);
+            }
+            return py::make_tuple(retval, finishOut(outE), finishOut(outR), finishOut(outT),
+                                  finishOut(ioMask));
+        },
+        py::arg("points1"), py::arg("points2"), py::arg("cameraMatrix1"), py::arg("distCoeffs1"),
+        py::arg("cameraMatrix2"), py::arg("distCoeffs2"), py::arg("E") = py::none(),
+        py::arg("R") = py::none(), py::arg("t") = py::none(),
+        py::arg("method") = static_cast<int>(cv::RANSAC), py::arg("prob") = 0.999,
+        py::arg("threshold") = 1.0, py::arg("mask") = py::none(), kDocRecoverPoseTwoCameras);
 
     m.def(
         "recoverPose",
@@ -837,6 +989,32 @@ PYBIND11_MODULE(rcme, m)
         py::arg("E"), py::arg("points1"), py::arg("points2"), py::arg("R") = py::none(),
         py::arg("t") = py::none(), py::arg("focal") = 1.0, py::arg("pp") = py::make_tuple(0.0, 0.0),
         py::arg("mask") = py::none(), kDocRecoverPoseFocal);
+
+    m.def(
+        "recoverPose",
+        [](py::object E, py::object points1, py::object points2, py::object cameraMatrix,
+           double distanceThresh, py::object R, py::object t, py::object mask,
+           py::object triangulatedPoints) {
+            const char* f = "recoverPose";
+            InMat e = toMat(E, "E", Conv::Float, f);
+            InMat p1 = toMat(points1, "points1", Conv::Float, f);
+            InMat p2 = toMat(points2, "points2", Conv::Float, f);
+            InMat k = toMat(cameraMatrix, "cameraMatrix", Conv::Float, f);
+            OutMat outR = toOutMat(R), outT = toOutMat(t), outPoints = toOutMat(triangulatedPoints);
+            OutMat ioMask = toInOutMat(mask, "mask", f);
+            int retval = 0;
+            {
+                py::gil_scoped_release nogil;
+                retval = cv::rcme::recoverPose(e.mat, p1.mat, p2.mat, k.mat, outR.mat, outT.mat,
+                                               distanceThresh, ioMask.mat, outPoints.mat);
+            }
+            return py::make_tuple(retval, finishOut(outR), finishOut(outT), finishOut(ioMask),
+                                  finishOut(outPoints));
+        },
+        py::arg("E"), py::arg("points1"), py::arg("points2"), py::arg("cameraMatrix"),
+        py::arg("distanceThresh"), py::arg("R") = py::none(), py::arg("t") = py::none(),
+        py::arg("mask") = py::none(), py::arg("triangulatedPoints") = py::none(),
+        kDocRecoverPoseDistance);
 
     m.def(
         "generateScene",

@@ -30,7 +30,7 @@ except ImportError:  # pytest, or plain unittest outside an OpenCV source tree
     _Cv2TestCase = unittest.TestCase
 
 FM_RANSAC = 8  # cv2.FM_RANSAC == cv2.RANSAC == 8, accepted by the drop-in overloads
-FM_LMEDS = 4  # cv2.FM_LMEDS, not supported by rcme
+UNKNOWN_METHOD = 99  # neither an OpenCV method flag nor a METHOD_* value
 
 
 def _load_standalone():
@@ -374,7 +374,7 @@ class _RcmeSuite:
                                                                    3.0, 0.99, 1000)[0])
         np.testing.assert_array_equal(mask2, mask)
         self.assertRaisesNaming(["method"], b.findFundamentalMat, s.points1, s.points2,
-                                FM_LMEDS, 3.0, 0.99, 2000)
+                                UNKNOWN_METHOD, 3.0, 0.99, 2000)
 
     def test_output_array_is_written_in_place(self):
         s = self.make_scene(seed=15)
@@ -755,7 +755,7 @@ class _RcmeSuite:
             b.findFundamentalMat("not points", p2, p)
         with self.assertRaises((self.error, TypeError)):
             b.findFundamentalMat(p1, p2, "not a method")  # no overload takes a string
-        self.assertRaisesNaming(["method"], b.findFundamentalMat, p1, p2, 4)  # cv2.FM_LMEDS
+        self.assertRaisesNaming(["method"], b.findFundamentalMat, p1, p2, UNKNOWN_METHOD)
         sp = b.SceneParams()
         sp.inlierRatio = 2.0
         self.assertRaisesNaming(["inlierRatio"], b.generateScene, sp)
@@ -806,6 +806,67 @@ class _RcmeSuite:
             np.testing.assert_array_equal(F1, F2)
             np.testing.assert_array_equal(m1, m2)
             self.assertEqual(s1, s2)
+
+
+    def test_opencv_forms_have_cv2s_signatures_and_results(self):
+        """Every OpenCV form that cv2 wraps, called as cv2 calls it: same arity of the result,
+        masks of cv2's shape and dtype, an empty E -> a standing camera (cv2 raises there)."""
+        try:
+            import cv2
+        except ImportError:
+            self.skipTest("no cv2 to compare with")
+        s = self.make_scene(numPoints=60, inlierRatio=1.0)
+        p1, p2, K = s.points1, s.points2, s.cameraMatrix
+        d = np.array([0.01, -0.001, 0.0, 0.0, 0.0])
+        focal, pp = float(K[0, 0]), (float(K[0, 2]), float(K[1, 2]))
+        E_true = s.E
+        calls = {
+            "F 6 args": lambda m: m.findFundamentalMat(p1, p2, cv2.FM_RANSAC, 3.0, 0.99, 1000),
+            "F defaults": lambda m: m.findFundamentalMat(p1, p2),
+            "F method only": lambda m: m.findFundamentalMat(p1, p2, cv2.FM_LMEDS),
+            "F usac": lambda m: m.findFundamentalMat(p1, p2, cv2.UsacParams()),
+            "E K": lambda m: m.findEssentialMat(p1, p2, K),
+            "E K keywords": lambda m: m.findEssentialMat(p1, p2, K, method=cv2.RANSAC, prob=0.999,
+                                                         threshold=1.0, maxIters=500),
+            "E focal": lambda m: m.findEssentialMat(p1, p2, focal, pp, cv2.RANSAC, 0.999, 1.0),
+            "E two cameras": lambda m: m.findEssentialMat(p1, p2, K, d, K, d),
+            "E two cameras usac": lambda m: m.findEssentialMat(p1, p2, K, K, d, d,
+                                                               cv2.UsacParams()),
+            "R two cameras": lambda m: m.recoverPose(p1, p2, K, d, K, d),
+            "R from E": lambda m: m.recoverPose(E_true, p1, p2, K),
+            "R from E focal": lambda m: m.recoverPose(E_true, p1, p2, focal=focal, pp=pp),
+            "R distanceThresh": lambda m: m.recoverPose(E_true, p1, p2, K, distanceThresh=50.0),
+        }
+        for name, call in calls.items():
+            with self.subTest(form=name):
+                expected, got = call(cv2), call(self.b)
+                self.assertEqual(len(got), len(expected))
+                for a, b in zip(expected, got):
+                    if isinstance(a, np.ndarray) and a.dtype == np.uint8:  # the mask
+                        self.assertEqual(b.shape, a.shape)
+                        self.assertEqual(b.dtype, a.dtype)
+        retval, R, t, mask = self.b.recoverPose(None, p1, p2, K)
+        self.assertEqual(retval, 0)
+        np.testing.assert_array_equal(R, np.eye(3))
+        np.testing.assert_array_equal(t, np.zeros((3, 1)))
+        self.assertEqual(int(mask.sum()), 0)
+        with self.assertRaises(cv2.error):
+            cv2.recoverPose(np.zeros((0, 0)), p1, p2, K)
+
+    def test_wrong_field_type_names_the_field(self):
+        p = self.b.Params()
+        with self.assertRaises((TypeError, self.error)) as ctx:  # what cv2's generator raises
+            p.sigma = "x"
+        if self.binding_key == "standalone":  # cv2's generator has its own message
+            self.assertIn("Params.sigma", str(ctx.exception))
+            self.assertLess(len(str(ctx.exception)), 200)
+
+    def test_time_budget_returns_the_best_so_far(self):
+        s = self.make_scene(numPoints=200, inlierRatio=0.8)
+        p = self.make_params(maxIterations=10000000, exactIterations=True, timeBudget=0.05)
+        r = self.b.estimateRelativeMotion(s.points1, s.points2, s.cameraMatrix, p)
+        self.assertLess(r.iterations, 10000000)
+        self.assertEqual(r.status, self.b.STATUS_SUCCESS)
 
 
 class TestStandaloneRcme(_RcmeSuite, unittest.TestCase):
