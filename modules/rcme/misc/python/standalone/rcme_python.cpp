@@ -315,7 +315,10 @@ public:
             s << className << "(";
             for (size_t i = 0; i < names.size(); ++i) {
                 py::object v = self.attr(names[i].c_str());
-                std::string text = py::isinstance<py::array>(v)
+                // None first: isinstance<array> imports NumPy, and the default Params is
+                // printed at import (the signature of params=Params()), where the stub
+                // generator's interpreter may have no NumPy.
+                std::string text = !v.is_none() && py::isinstance<py::array>(v)
                                        ? "<array " + std::string(py::str(v.attr("shape"))) + " " +
                                              std::string(py::str(v.attr("dtype"))) + ">"
                                        : std::string(py::repr(v));
@@ -347,6 +350,25 @@ public:
                   "defaults, e.g. " +
                   className + "(" + names.front() + "=...).")
                      .c_str());
+    }
+
+    //! Pickling by field values (Dask, Ray and multiprocessing send Params and Reports).
+    void addPickle()
+    {
+        auto names = names_;
+        cls_.def(py::pickle(
+            [names](py::object self) {
+                py::dict state;
+                for (const auto& name : names)
+                    state[name.c_str()] = self.attr(name.c_str());
+                return state;
+            },
+            [](const py::dict& state) {
+                py::object self = py::cast(T());
+                for (const auto& kv : state)
+                    py::setattr(self, kv.first, kv.second);
+                return py::cast<T>(self);
+            }));
     }
 
 private:
@@ -458,7 +480,88 @@ py::tuple runFundamentalDropIn(py::object points1, py::object points2, py::objec
     return py::make_tuple(fromMat(F), finishOut(outMask));
 }
 
-PYBIND11_MODULE(rcme, m)
+// ------------------------------------------------------------------------------------------
+// Batch: many pairs on every core (an extension over cv2.rcme, see opencv2/rcme/batch.hpp).
+
+const char* const kDocEstimateBatch =
+    "estimateRelativeMotionBatch(pairs, cameraMatrix[, params[, threads]]) -> retval\n"
+    ".   @brief estimateRelativeMotion on every (points1, points2) of pairs, spread over\n"
+    ".   C++ threads with the GIL released; retval is a list of one Report per pair, in order,\n"
+    ".   each the same as the single call's. cameraMatrix: None (uncalibrated), one 3x3\n"
+    ".   matrix for every pair, or a list with one matrix (or None) per pair. threads <= 0:\n"
+    ".   every core. A malformed pair raises rcme.error naming it (\"pair i: ...\").";
+
+//! cameraMatrix of the batch: None, one matrix, or a list/tuple of matrices or None, one per
+//! pair. A list of numbers (a nested-list 3x3) is one matrix.
+std::vector<InMat> batchCameras(py::handle cameraMatrix, size_t numPairs, const char* func)
+{
+    std::vector<InMat> cameras;
+    if (cameraMatrix.is_none())
+        return cameras;
+    const bool perPair = (PyList_Check(cameraMatrix.ptr()) || PyTuple_Check(cameraMatrix.ptr())) &&
+                         py::len(cameraMatrix) > 0 && [&] {
+                             for (py::handle k : cameraMatrix)
+                                 if (!k.is_none() && !py::isinstance<py::array>(k))
+                                     return false;
+                             return true;
+                         }();
+    if (!perPair) {
+        cameras.push_back(toMat(cameraMatrix, "cameraMatrix", Conv::Float, func));
+        return cameras;
+    }
+    if (py::len(cameraMatrix) != numPairs)
+        raiseBadArg("cameraMatrix is a list of " + std::to_string(py::len(cameraMatrix)) +
+                        " matrices; expected one per pair (" + std::to_string(numPairs) + ")",
+                    func);
+    size_t i = 0;
+    for (py::handle k : cameraMatrix) {
+        const std::string name = "cameraMatrix[" + std::to_string(i++) + "]";
+        cameras.push_back(toMat(k, name.c_str(), Conv::Float, func));
+    }
+    return cameras;
+}
+
+void addBatch(py::module_& m)
+{
+    m.def(
+        "estimateRelativeMotionBatch",
+        [](py::iterable pairs, py::object cameraMatrix, const Params& p, int threads) {
+            const char* f = "estimateRelativeMotionBatch";
+            std::vector<InMat> kept; // the arrays the Mats wrap, alive until the call returns
+            std::vector<cv::Mat> points1, points2;
+            size_t i = 0;
+            for (py::handle pair : pairs) {
+                const std::string name = "pairs[" + std::to_string(i++) + "]";
+                if (!PySequence_Check(pair.ptr()) || py::isinstance<py::array>(pair) ||
+                    py::len(pair) != 2)
+                    raiseBadArg(name + " must be a pair (points1, points2)", f);
+                py::sequence pq = py::reinterpret_borrow<py::sequence>(pair);
+                kept.push_back(toMat(pq[0], (name + "[0]").c_str(), Conv::Float, f));
+                points1.push_back(kept.back().mat);
+                kept.push_back(toMat(pq[1], (name + "[1]").c_str(), Conv::Float, f));
+                points2.push_back(kept.back().mat);
+            }
+            const std::vector<InMat> cameraArrays = batchCameras(cameraMatrix, points1.size(), f);
+            std::vector<cv::Mat> cameras;
+            for (const InMat& k : cameraArrays)
+                cameras.push_back(k.mat);
+            std::vector<Report> reports;
+            {
+                py::gil_scoped_release nogil;
+                reports =
+                    cv::rcme::estimateRelativeMotionBatch(points1, points2, cameras, p, threads);
+            }
+            py::list out;
+            for (Report& r : reports)
+                out.append(py::cast(std::move(r)));
+            return out;
+        },
+        py::arg("pairs"), py::arg("cameraMatrix"), py::arg("params") = Params(),
+        py::arg("threads") = 0, kDocEstimateBatch);
+}
+
+// The native part of the package `rcme` (its __init__.py re-exports every name).
+PYBIND11_MODULE(_rcme, m)
 {
     py::options options;
     options.disable_function_signatures(); // the docstrings carry cv2-style signatures
@@ -553,6 +656,7 @@ PYBIND11_MODULE(rcme, m)
                "evaluate hypotheses on OpenCV's threads, same result; default False");
     paramsFields.addKeywordInit("Params");
     paramsFields.addRepr("Params");
+    paramsFields.addPickle();
 
     // --- Report
     py::class_<Report> report(m, "Report", "Everything an estimation produced.");
@@ -572,6 +676,7 @@ PYBIND11_MODULE(rcme, m)
         .mat("covariance", &Report::covariance, "5x5 motion covariance or None")
         .plain("timeSeconds", &Report::timeSeconds);
     reportFields.addRepr("Report");
+    reportFields.addPickle();
 
     // --- SceneParams, SyntheticScene, MotionError
     py::class_<SceneParams> sceneParams(m, "SceneParams",
@@ -592,6 +697,7 @@ PYBIND11_MODULE(rcme, m)
         .plain("corridorHeight", &SceneParams::corridorHeight);
     sceneParamsFields.addKeywordInit("SceneParams");
     sceneParamsFields.addRepr("SceneParams");
+    sceneParamsFields.addPickle();
 
     py::class_<SyntheticScene> scene(m, "SyntheticScene",
                                      "A generated two-view scene with its ground truth.");
@@ -606,6 +712,7 @@ PYBIND11_MODULE(rcme, m)
         .mat("F", &SyntheticScene::F)
         .mat("E", &SyntheticScene::E);
     sceneFields.addRepr("SyntheticScene");
+    sceneFields.addPickle();
 
     py::class_<MotionError> motionError(m, "MotionError",
                                         "Differences between an estimated and a true motion.");
@@ -616,6 +723,7 @@ PYBIND11_MODULE(rcme, m)
         .plain("rotationDeg", &MotionError::rotationDeg)
         .plain("translationDeg", &MotionError::translationDeg);
     motionErrorFields.addRepr("MotionError");
+    motionErrorFields.addPickle();
 
     // --- functions, overloads in header order (cv2 tries them in that order too)
     m.def(
@@ -846,4 +954,6 @@ PYBIND11_MODULE(rcme, m)
             return cv::rcme::compareMotion(r.mat, tt.mat, rgt.mat, tgtm.mat);
         },
         py::arg("R"), py::arg("t"), py::arg("Rgt"), py::arg("tgt"), kDocCompareMotion);
+
+    addBatch(m);
 }
