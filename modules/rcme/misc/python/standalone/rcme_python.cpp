@@ -303,6 +303,7 @@ public:
             name, [member](const T& self) { return fromMat(self.*member); },
             [member, name](T& self, py::object v) { self.*member = matField(v, name); }, doc);
         names_.emplace_back(name);
+        matNames_.emplace_back(name);
         return *this;
     }
 
@@ -310,15 +311,18 @@ public:
     void addRepr(const std::string& className)
     {
         auto names = names_;
-        cls_.def("__repr__", [names, className](py::object self) {
+        auto matNames = matNames_;
+        cls_.def("__repr__", [names, matNames, className](py::object self) {
             std::ostringstream s;
             s << className << "(";
             for (size_t i = 0; i < names.size(); ++i) {
                 py::object v = self.attr(names[i].c_str());
-                // None first: isinstance<array> imports NumPy, and the default Params is
-                // printed at import (the signature of params=Params()), where the stub
-                // generator's interpreter may have no NumPy.
-                std::string text = !v.is_none() && py::isinstance<py::array>(v)
+                // By the field's kind, not isinstance<array>, which imports NumPy: the default
+                // Params is printed at import (the signature of params=Params()), and the stub
+                // generator's interpreter has no NumPy.
+                const bool isMat =
+                    std::find(matNames.begin(), matNames.end(), names[i]) != matNames.end();
+                std::string text = isMat && !v.is_none()
                                        ? "<array " + std::string(py::str(v.attr("shape"))) + " " +
                                              std::string(py::str(v.attr("dtype"))) + ">"
                                        : std::string(py::repr(v));
@@ -374,6 +378,7 @@ public:
 private:
     py::class_<T>& cls_;
     std::vector<std::string> names_;
+    std::vector<std::string> matNames_; //!< the cv::Mat fields (NumPy arrays or None)
 };
 
 //! Params.fromUsacParams(usacParams): any object with cv2.UsacParams' attributes (duck typing, so

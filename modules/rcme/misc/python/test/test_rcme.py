@@ -641,7 +641,10 @@ class _RcmeSuite:
     def test_parallel_same_result_whatever_the_thread_count(self):
         # Params.isParallel spreads hypotheses over cv2's threads; every method must give the
         # result of a sequential run, bit for bit, with 1, 2 or 3 threads
-        import cv2
+        try:
+            import cv2
+        except ImportError:  # a venv with the pip-installed rcme and no cv2
+            self.skipTest("cv2 is needed to set OpenCV's thread count")
         b = self.b
         s = self.make_scene(seed=24)
         previous = cv2.getNumThreads()
