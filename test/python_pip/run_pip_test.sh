@@ -7,7 +7,9 @@
 # NumPy from PyPI (NUMPY, default "numpy>=2,<3"), `pip install <repo>` (scikit-build-core and
 # pybind11 come from PyPI in pip's isolated build environment), then pytest on
 # modules/rcme/misc/python/test from outside the repository, with RCME_TEST_REQUIRE=standalone
-# so that a package that does not import fails instead of skipping. The venv is made anew on
+# so that a package that does not import fails instead of skipping; then pip's
+# opencv-python-headless in the same venv and test_cv2_coexistence.py (both cv2 and rcme in one
+# process, arrays passed between them; COEXIST=0 skips it). The venv is made anew on
 # every run (BUILD_DIR/pip_test/venv, default BUILD_DIR=build); pip's download cache and the
 # wheel's CMake build folder (BUILD_DIR-pip, beside BUILD_DIR so that ccache reuses the objects
 # of the main build) are kept between runs.
@@ -43,4 +45,13 @@ print("rcme from %s, NumPy %s" % (folder, numpy.__version__))
 PY
 RCME_TEST_REQUIRE=standalone PYTHONDONTWRITEBYTECODE=1 \
   "$venv/bin/python" -m pytest -q -p no:cacheprovider "$repo/modules/rcme/misc/python/test"
-echo "run_pip_test: venv + install $((installed - start)) s, tests $(($(date +%s) - installed)) s"
+tested=$(date +%s)
+echo "run_pip_test: venv + install $((installed - start)) s, tests $((tested - installed)) s"
+
+# pip's cv2 in the same process (COEXIST=0 skips: it downloads opencv-python-headless).
+if [ "${COEXIST:-1}" != 0 ]; then
+  "$venv/bin/python" -m pip install --quiet opencv-python-headless
+  PYTHONDONTWRITEBYTECODE=1 "$venv/bin/python" -m pytest -q -p no:cacheprovider \
+    "$repo/test/python_pip/test_cv2_coexistence.py"
+  echo "run_pip_test: opencv-python-headless install + coexistence test $(($(date +%s) - tested)) s"
+fi
