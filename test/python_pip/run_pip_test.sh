@@ -6,7 +6,7 @@
 # What a Python user does: a venv of the machine's CPython (PYTHON, default /usr/bin/python3),
 # NumPy from PyPI (NUMPY, default "numpy>=2,<3"), `pip install <repo>` (scikit-build-core and
 # pybind11 come from PyPI in pip's isolated build environment), then pytest on
-# modules/rcme/misc/python/test from outside the repository, with RCME_TEST_REQUIRE=standalone
+# modules/rcme/misc/python/test and README.md's Python example from outside the repository, with RCME_TEST_REQUIRE=standalone
 # so that a package that does not import fails instead of skipping; then pip's
 # opencv-python-headless in the same venv and test_cv2_coexistence.py (both cv2 and rcme in one
 # process, arrays passed between them; COEXIST=0 skips it). The venv is made anew on
@@ -45,6 +45,7 @@ print("rcme from %s, NumPy %s" % (folder, numpy.__version__))
 PY
 RCME_TEST_REQUIRE=standalone PYTHONDONTWRITEBYTECODE=1 \
   "$venv/bin/python" -m pytest -q -p no:cacheprovider "$repo/modules/rcme/misc/python/test"
+"$venv/bin/python" "$repo/test/python_pip/run_readme_example.py" "$repo/README.md"
 tested=$(date +%s)
 echo "run_pip_test: venv + install $((installed - start)) s, tests $((tested - installed)) s"
 
