@@ -5,14 +5,14 @@
 #
 # What a Python user does: a venv of the machine's CPython (PYTHON, default /usr/bin/python3),
 # NumPy from PyPI (NUMPY, default "numpy>=2,<3"), `pip install <repo>` (scikit-build-core and
-# pybind11 come from PyPI in pip's isolated build environment), then pytest on
-# modules/rcme/misc/python/test and README.md's Python example from outside the repository, with RCME_TEST_REQUIRE=standalone
-# so that a package that does not import fails instead of skipping; then pip's
-# opencv-python-headless in the same venv and test_cv2_coexistence.py (both cv2 and rcme in one
-# process, arrays passed between them; COEXIST=0 skips it). The venv is made anew on
-# every run (BUILD_DIR/pip_test/venv, default BUILD_DIR=build); pip's download cache and the
-# wheel's CMake build folder (BUILD_DIR-pip, beside BUILD_DIR so that ccache reuses the objects
-# of the main build) are kept between runs.
+# pybind11 come from PyPI in pip's isolated build environment), then, from outside the
+# repository, pytest on modules/rcme/misc/python/test (RCME_TEST_REQUIRE=standalone: a package
+# that does not import fails instead of skipping) and README.md's Python example; then pip's
+# opencv-python-headless in the same venv and test_cv2_coexistence.py (cv2 and rcme in one
+# process, arrays passed between them; COEXIST=0 skips it). The venv is made anew on every run
+# (BUILD_DIR/pip_test/venv, default BUILD_DIR=build); pip's download cache and the wheel's
+# CMake build folder (BUILD_DIR-pip, beside BUILD_DIR so that ccache reuses the objects of the
+# main build) are kept between runs.
 set -euo pipefail
 
 repo=$(cd "$(dirname "$0")/../.." && pwd)
