@@ -6,7 +6,7 @@ BUILD_DIR ?= build
 JOBS ?= 2
 DEB_PACKAGES := build-essential cmake ninja-build ccache pkg-config libopencv-dev libeigen3-dev \
 	libgtest-dev pybind11-dev libbenchmark-dev python3-dev python3-numpy python3-opencv \
-	python3-pytest dpkg-dev zlib1g-dev libpng-dev libjpeg-dev clang libclang-rt-14-dev
+	python3-pytest dpkg-dev zlib1g-dev libpng-dev libjpeg-dev clang libclang-rt-14-dev python3-venv
 # INTREE=0 skips the in-tree step of make test (OpenCV built from source with the module, see
 # test/opencv_intree/build_opencv_with_rcme.sh; dpkg-dev and the zlib/png/jpeg headers are for it).
 INTREE ?= 1
@@ -20,7 +20,7 @@ FUZZ_SECONDS ?= 60
 export CCACHE_BASEDIR ?= $(CURDIR)
 export CCACHE_NOHASHDIR = 1
 
-.PHONY: demo test test-intree sanitize sanitize-thread fuzz build configure deps
+.PHONY: demo test test-intree test-pip sanitize sanitize-thread fuzz build configure deps
 
 demo: build
 	$(BUILD_DIR)/bin/rcme_two_view_demo --method rcme --out $(BUILD_DIR)/demo/two_view_demo.png
@@ -42,6 +42,10 @@ sanitize-thread: deps
 # libFuzzer on the public API (build-sanitize/) for FUZZ_SECONDS.
 fuzz: deps
 	JOBS=$(JOBS) test/hardening/run_fuzzer.sh $(FUZZ_SECONDS)
+
+# `pip install .` in a fresh venv (NumPy 2 from PyPI) and the Python tests on the installed package.
+test-pip: deps
+	JOBS=$(JOBS) BUILD_DIR=$(BUILD_DIR) test/python_pip/run_pip_test.sh
 
 test-intree: deps
 	test/opencv_intree/build_opencv_with_rcme.sh --jobs $(JOBS)

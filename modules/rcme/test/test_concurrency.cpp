@@ -8,6 +8,7 @@
 #include "test_precomp.hpp"
 
 #include <atomic>
+#include <cmath>
 #include <cstring>
 #include <thread>
 
@@ -194,6 +195,85 @@ TEST(Rcme_Concurrency, one_estimate_from_many_threads_is_always_the_same)
         EXPECT_EQ(cv::norm(r.t, reference.t, NORM_INF), 0.0);
         EXPECT_EQ(cv::norm(r.mask, reference.mask, NORM_INF), 0.0);
         EXPECT_EQ(r.meanEntropy, reference.meanEntropy);
+    }
+}
+
+// estimateRelativeMotionBatch: every Report equal to the serial call's (timeSeconds aside), for
+// any thread count, with per-pair camera matrices (empty ones uncalibrated) or a shared one.
+void expectSameReport(const Report& a, const Report& b, size_t pair)
+{
+    SCOPED_TRACE(cv::format("pair %d", static_cast<int>(pair)));
+    EXPECT_EQ(a.status, b.status);
+    EXPECT_EQ(a.message, b.message);
+    EXPECT_EQ(a.inlierCount, b.inlierCount);
+    EXPECT_EQ(a.iterations, b.iterations);
+    EXPECT_EQ(a.pointsPerHypothesis, b.pointsPerHypothesis);
+    EXPECT_TRUE(a.meanEntropy == b.meanEntropy ||
+                (std::isnan(a.meanEntropy) && std::isnan(b.meanEntropy)));
+    expectIdentical({a.F, a.E, a.R, a.t, a.mask, a.covariance},
+                    {b.F, b.E, b.R, b.t, b.mask, b.covariance}, static_cast<int>(pair));
+}
+
+TEST(Rcme_Concurrency, batch_gives_the_serial_reports_on_any_thread_count)
+{
+    std::vector<Mat> points1, points2, cameras;
+    for (int i = 0; i < 10; ++i) {
+        const SyntheticScene s =
+            testScene(i % 2 ? SCENE_GENERIC : SCENE_CORRIDOR, 300 + i, 0.6, 1.0, 120);
+        points1.push_back(s.points1);
+        points2.push_back(s.points2);
+        cameras.push_back(i % 3 == 2 ? Mat() : s.cameraMatrix);
+    }
+    Params params;
+    params.method = METHOD_RCME;
+    params.maxIterations = 100;
+    params.randomGeneratorState = 9;
+    std::vector<Report> serial;
+    for (size_t i = 0; i < points1.size(); ++i)
+        serial.push_back(estimateRelativeMotion(points1[i], points2[i], cameras[i], params));
+    for (int threads : {1, 3, 0}) {
+        SCOPED_TRACE(cv::format("threads %d", threads));
+        const std::vector<Report> batch =
+            estimateRelativeMotionBatch(points1, points2, cameras, params, threads);
+        ASSERT_EQ(batch.size(), serial.size());
+        for (size_t i = 0; i < batch.size(); ++i)
+            expectSameReport(batch[i], serial[i], i);
+    }
+    // One shared camera matrix is the same as that matrix repeated.
+    const std::vector<Report> shared =
+        estimateRelativeMotionBatch(points1, points2, {cameras[0]}, params, 2);
+    const std::vector<Report> repeated = estimateRelativeMotionBatch(
+        points1, points2, std::vector<Mat>(points1.size(), cameras[0]), params, 1);
+    for (size_t i = 0; i < shared.size(); ++i)
+        expectSameReport(shared[i], repeated[i], i);
+    EXPECT_TRUE(estimateRelativeMotionBatch({}, {}, {}, params).empty());
+}
+
+TEST(Rcme_Concurrency, batch_errors_name_the_argument_and_the_pair)
+{
+    const SyntheticScene s = genericTestScene(5, 0.6, 100);
+    const Params params;
+    try {
+        estimateRelativeMotionBatch({s.points1, s.points1}, {s.points2}, {}, params);
+        ADD_FAILURE() << "no exception for points2's size";
+    } catch (const cv::Exception& e) {
+        EXPECT_NE(e.err.find("points2"), std::string::npos) << e.err;
+    }
+    try {
+        estimateRelativeMotionBatch({s.points1, s.points1}, {s.points2, s.points2},
+                                    {s.cameraMatrix, s.cameraMatrix, s.cameraMatrix}, params);
+        ADD_FAILURE() << "no exception for cameraMatrices' size";
+    } catch (const cv::Exception& e) {
+        EXPECT_NE(e.err.find("cameraMatrices"), std::string::npos) << e.err;
+    }
+    try {
+        // pair 1 has mismatched point counts, pair 2 a camera matrix of the wrong size
+        estimateRelativeMotionBatch(
+            {s.points1, s.points1, s.points1}, {s.points2, s.points2.rowRange(0, 50), s.points2},
+            {s.cameraMatrix, s.cameraMatrix, Mat::eye(2, 2, CV_64F)}, params, 2);
+        ADD_FAILURE() << "no exception for a malformed pair";
+    } catch (const cv::Exception& e) {
+        EXPECT_EQ(e.err.rfind("pair 1: ", 0), 0u) << e.err;
     }
 }
 

@@ -27,6 +27,7 @@ Conventions: R and t map points of the first camera frame to the second, x2 = R 
 |t| = 1, exactly as cv::recoverPose. The inlier mask is always an Nx1 CV_8U matrix of 0 and 1.
 */
 
+#include "opencv2/rcme/batch.hpp"
 #include "opencv2/rcme/estimate.hpp"
 #include "opencv2/rcme/params.hpp"
 #include "opencv2/rcme/synthetic.hpp"

@@ -311,6 +311,7 @@ public:
             name, [member](const T& self) { return fromMat(self.*member); },
             [member, name](T& self, py::object v) { self.*member = matField(v, name); }, doc);
         names_.emplace_back(name);
+        matNames_.emplace_back(name);
         return *this;
     }
 
@@ -318,12 +319,18 @@ public:
     void addRepr(const std::string& className)
     {
         auto names = names_;
-        cls_.def("__repr__", [names, className](py::object self) {
+        auto matNames = matNames_;
+        cls_.def("__repr__", [names, matNames, className](py::object self) {
             std::ostringstream s;
             s << className << "(";
             for (size_t i = 0; i < names.size(); ++i) {
                 py::object v = self.attr(names[i].c_str());
-                std::string text = py::isinstance<py::array>(v)
+                // By the field's kind, not isinstance<array>, which imports NumPy: the default
+                // Params is printed at import (the signature of params=Params()), and the stub
+                // generator's interpreter has no NumPy.
+                const bool isMat =
+                    std::find(matNames.begin(), matNames.end(), names[i]) != matNames.end();
+                std::string text = isMat && !v.is_none()
                                        ? "<array " + std::string(py::str(v.attr("shape"))) + " " +
                                              std::string(py::str(v.attr("dtype"))) + ">"
                                        : std::string(py::repr(v));
@@ -357,6 +364,25 @@ public:
                      .c_str());
     }
 
+    //! Pickling by field values (Dask, Ray and multiprocessing send Params and Reports).
+    void addPickle()
+    {
+        auto names = names_;
+        cls_.def(py::pickle(
+            [names](py::object self) {
+                py::dict state;
+                for (const auto& name : names)
+                    state[name.c_str()] = self.attr(name.c_str());
+                return state;
+            },
+            [](const py::dict& state) {
+                py::object self = py::cast(T());
+                for (const auto& kv : state)
+                    py::setattr(self, kv.first, kv.second);
+                return py::cast<T>(self);
+            }));
+    }
+
 private:
     std::string qualified(const char* name) const
     {
@@ -383,6 +409,7 @@ private:
 
     py::class_<T>& cls_;
     std::vector<std::string> names_;
+    std::vector<std::string> matNames_; //!< the cv::Mat fields (NumPy arrays or None)
 };
 
 //! A cv::UsacParams from any object with cv2.UsacParams' attributes (duck typing, so that a
@@ -519,7 +546,88 @@ py::tuple runFundamentalDropIn(py::object points1, py::object points2, py::objec
     return py::make_tuple(fromMat(F), finishOut(outMask));
 }
 
-PYBIND11_MODULE(rcme, m)
+// ------------------------------------------------------------------------------------------
+// Batch: many pairs on every core (an extension over cv2.rcme, see opencv2/rcme/batch.hpp).
+
+const char* const kDocEstimateBatch =
+    "estimateRelativeMotionBatch(pairs, cameraMatrix[, params[, threads]]) -> retval\n"
+    ".   @brief estimateRelativeMotion on every (points1, points2) of pairs, spread over\n"
+    ".   C++ threads with the GIL released; retval is a list of one Report per pair, in order,\n"
+    ".   each the same as the single call's. cameraMatrix: None (uncalibrated), one 3x3\n"
+    ".   matrix for every pair, or a list with one matrix (or None) per pair. threads <= 0:\n"
+    ".   every core. A malformed pair raises rcme.error naming it (\"pair i: ...\").";
+
+//! cameraMatrix of the batch: None, one matrix, or a list/tuple of matrices or None, one per
+//! pair. A list of numbers (a nested-list 3x3) is one matrix.
+std::vector<InMat> batchCameras(py::handle cameraMatrix, size_t numPairs, const char* func)
+{
+    std::vector<InMat> cameras;
+    if (cameraMatrix.is_none())
+        return cameras;
+    const bool perPair = (PyList_Check(cameraMatrix.ptr()) || PyTuple_Check(cameraMatrix.ptr())) &&
+                         py::len(cameraMatrix) > 0 && [&] {
+                             for (py::handle k : cameraMatrix)
+                                 if (!k.is_none() && !py::isinstance<py::array>(k))
+                                     return false;
+                             return true;
+                         }();
+    if (!perPair) {
+        cameras.push_back(toMat(cameraMatrix, "cameraMatrix", Conv::Float, func));
+        return cameras;
+    }
+    if (py::len(cameraMatrix) != numPairs)
+        raiseBadArg("cameraMatrix is a list of " + std::to_string(py::len(cameraMatrix)) +
+                        " matrices; expected one per pair (" + std::to_string(numPairs) + ")",
+                    func);
+    size_t i = 0;
+    for (py::handle k : cameraMatrix) {
+        const std::string name = "cameraMatrix[" + std::to_string(i++) + "]";
+        cameras.push_back(toMat(k, name.c_str(), Conv::Float, func));
+    }
+    return cameras;
+}
+
+void addBatch(py::module_& m)
+{
+    m.def(
+        "estimateRelativeMotionBatch",
+        [](py::iterable pairs, py::object cameraMatrix, const Params& p, int threads) {
+            const char* f = "estimateRelativeMotionBatch";
+            std::vector<InMat> kept; // the arrays the Mats wrap, alive until the call returns
+            std::vector<cv::Mat> points1, points2;
+            size_t i = 0;
+            for (py::handle pair : pairs) {
+                const std::string name = "pairs[" + std::to_string(i++) + "]";
+                if (!PySequence_Check(pair.ptr()) || py::isinstance<py::array>(pair) ||
+                    py::len(pair) != 2)
+                    raiseBadArg(name + " must be a pair (points1, points2)", f);
+                py::sequence pq = py::reinterpret_borrow<py::sequence>(pair);
+                kept.push_back(toMat(pq[0], (name + "[0]").c_str(), Conv::Float, f));
+                points1.push_back(kept.back().mat);
+                kept.push_back(toMat(pq[1], (name + "[1]").c_str(), Conv::Float, f));
+                points2.push_back(kept.back().mat);
+            }
+            const std::vector<InMat> cameraArrays = batchCameras(cameraMatrix, points1.size(), f);
+            std::vector<cv::Mat> cameras;
+            for (const InMat& k : cameraArrays)
+                cameras.push_back(k.mat);
+            std::vector<Report> reports;
+            {
+                py::gil_scoped_release nogil;
+                reports =
+                    cv::rcme::estimateRelativeMotionBatch(points1, points2, cameras, p, threads);
+            }
+            py::list out;
+            for (Report& r : reports)
+                out.append(py::cast(std::move(r)));
+            return out;
+        },
+        py::arg("pairs"), py::arg("cameraMatrix"), py::arg("params") = Params(),
+        py::arg("threads") = 0, kDocEstimateBatch);
+}
+
+// The native part of the package `rcme` (its __init__.py re-exports every name).
+PYBIND11_MODULE(_rcme, m)
 {
     py::options options;
     options.disable_function_signatures(); // the docstrings carry cv2-style signatures
@@ -618,6 +726,7 @@ PYBIND11_MODULE(rcme, m)
                "wall-time budget of a call, seconds; <= 0 (default): none");
     paramsFields.addKeywordInit("Params");
     paramsFields.addRepr("Params");
+    paramsFields.addPickle();
 
     // --- Report
     py::class_<Report> report(m, "Report", "Everything an estimation produced.");
@@ -642,6 +751,7 @@ PYBIND11_MODULE(rcme, m)
                "translation direction's largest angular std (degrees), or NaN")
         .plain("timeSeconds", &Report::timeSeconds);
     reportFields.addRepr("Report");
+    reportFields.addPickle();
 
     // --- SceneParams, SyntheticScene, MotionError
     py::class_<SceneParams> sceneParams(m, "SceneParams",
@@ -662,6 +772,7 @@ PYBIND11_MODULE(rcme, m)
         .plain("corridorHeight", &SceneParams::corridorHeight);
     sceneParamsFields.addKeywordInit("SceneParams");
     sceneParamsFields.addRepr("SceneParams");
+    sceneParamsFields.addPickle();
 
     py::class_<SyntheticScene> scene(m, "SyntheticScene",
                                      "A generated two-view scene with its ground truth.");
@@ -676,6 +787,7 @@ PYBIND11_MODULE(rcme, m)
         .mat("F", &SyntheticScene::F)
         .mat("E", &SyntheticScene::E);
     sceneFields.addRepr("SyntheticScene");
+    sceneFields.addPickle();
 
     py::class_<MotionError> motionError(m, "MotionError",
                                         "Differences between an estimated and a true motion.");
@@ -686,6 +798,7 @@ PYBIND11_MODULE(rcme, m)
         .plain("rotationDeg", &MotionError::rotationDeg)
         .plain("translationDeg", &MotionError::translationDeg);
     motionErrorFields.addRepr("MotionError");
+    motionErrorFields.addPickle();
 
     // --- functions, overloads in header order (cv2 tries them in that order too)
     m.def(
@@ -1053,4 +1166,6 @@ PYBIND11_MODULE(rcme, m)
         },
         py::arg("R"), py::arg("t"), py::arg("covariance"), py::arg("scaleStd") = 0.0,
         py::arg("inverse") = false, kDocPoseCovariance);
+
+    addBatch(m);
 }

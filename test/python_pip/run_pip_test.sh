@@ -1,0 +1,58 @@
+#!/usr/bin/env bash
+# `pip install .` in a fresh virtual environment, then the Python tests on the installed package.
+#
+#   test/python_pip/run_pip_test.sh
+#
+# What a Python user does: a venv of the machine's CPython (PYTHON, default /usr/bin/python3),
+# NumPy from PyPI (NUMPY, default "numpy>=2,<3"), `pip install <repo>` (scikit-build-core and
+# pybind11 come from PyPI in pip's isolated build environment), then, from outside the
+# repository, pytest on modules/rcme/misc/python/test (RCME_TEST_REQUIRE=standalone: a package
+# that does not import fails instead of skipping) and README.md's Python example; then pip's
+# opencv-python-headless in the same venv and test_cv2_coexistence.py (cv2 and rcme in one
+# process, arrays passed between them; COEXIST=0 skips it). The venv is made anew on every run
+# (BUILD_DIR/pip_test/venv, default BUILD_DIR=build); pip's download cache and the wheel's
+# CMake build folder (BUILD_DIR-pip, beside BUILD_DIR so that ccache reuses the objects of the
+# main build) are kept between runs.
+set -euo pipefail
+
+repo=$(cd "$(dirname "$0")/../.." && pwd)
+build_dir=${BUILD_DIR:-build}
+case $build_dir in /*) ;; *) build_dir=$repo/$build_dir ;; esac
+python=${PYTHON:-/usr/bin/python3}
+numpy_spec=${NUMPY:-numpy>=2,<3}
+work=$build_dir/pip_test
+venv=$work/venv
+
+start=$(date +%s)
+rm -rf "$venv"
+mkdir -p "$work"
+"$python" -m venv "$venv"
+"$venv/bin/python" -m pip install --quiet "$numpy_spec" pytest
+# The compiler as CMake finds it by default (c++), not the interpreter's CXX, so that ccache
+# matches the main build's compile lines.
+CXX=${CXX:-c++} CMAKE_BUILD_PARALLEL_LEVEL=${JOBS:-2} "$venv/bin/python" -m pip install --quiet \
+  --config-settings=build-dir="$build_dir-pip" "$repo"
+installed=$(date +%s)
+
+cd "$work" # not the repository: the tests must import the installed package
+"$venv/bin/python" - <<'PY'
+import os, numpy, rcme
+folder = os.path.dirname(rcme.__file__)
+assert "site-packages" in folder, folder
+for name in ("__init__.pyi", "py.typed"):
+    assert os.path.isfile(os.path.join(folder, name)), name
+print("rcme from %s, NumPy %s" % (folder, numpy.__version__))
+PY
+RCME_TEST_REQUIRE=standalone PYTHONDONTWRITEBYTECODE=1 \
+  "$venv/bin/python" -m pytest -q -p no:cacheprovider "$repo/modules/rcme/misc/python/test"
+"$venv/bin/python" "$repo/test/python_pip/run_readme_example.py" "$repo/README.md"
+tested=$(date +%s)
+echo "run_pip_test: venv + install $((installed - start)) s, tests $((tested - installed)) s"
+
+# pip's cv2 in the same process (COEXIST=0 skips: it downloads opencv-python-headless).
+if [ "${COEXIST:-1}" != 0 ]; then
+  "$venv/bin/python" -m pip install --quiet opencv-python-headless
+  PYTHONDONTWRITEBYTECODE=1 "$venv/bin/python" -m pytest -q -p no:cacheprovider \
+    "$repo/test/python_pip/test_cv2_coexistence.py"
+  echo "run_pip_test: opencv-python-headless install + coexistence test $(($(date +%s) - tested)) s"
+fi
