@@ -41,6 +41,18 @@ void fail(Report& report, std::vector<uchar>& mask, Status status, const std::st
     std::fill(mask.begin(), mask.end(), 0);
 }
 
+// The model a failed estimation rejected, for diagnostics only (Report::rejectedF...).
+void setRejected(Report& report, const detail::Model& model, bool calibrated)
+{
+    if (!model.F.allFinite() || model.F.isZero())
+        return;
+    report.rejectedF = toMat(model.F);
+    if (calibrated && model.hasMotion) {
+        report.rejectedR = toMat(model.R);
+        report.rejectedT = toMat(model.t);
+    }
+}
+
 Estimation estimate(InputArray points1, InputArray points2, InputArray cameraMatrix,
                     const Params& params)
 {
@@ -52,10 +64,10 @@ Estimation estimate(InputArray points1, InputArray points2, InputArray cameraMat
     if (result.status == STATUS_SUCCESS && params.degeneracyTest &&
         detail::compareWithHomography(data, result.model.F, result.mask)
             .homographyExplainsInliers) {
-        result.status = STATUS_DEGENERATE_CONFIGURATION;
-        result.message = "a homography explains the inliers as well as F (planar scene, pure "
-                         "rotation or too little parallax): the motion is not determined";
-        std::fill(result.mask.begin(), result.mask.end(), 0);
+        detail::rejectModel(result, STATUS_DEGENERATE_CONFIGURATION,
+                            "a homography explains the inliers as well as F (planar scene, pure "
+                            "rotation or too little parallax): the motion is not determined",
+                            result.model);
     }
 
     Estimation out;
@@ -72,6 +84,7 @@ Estimation estimate(InputArray points1, InputArray points2, InputArray cameraMat
                                            &out.mask, &out.inFront) == 0) {
                 fail(report, out.mask, STATUS_DEGENERATE_CONFIGURATION,
                      "no decomposition of E puts the inliers in front of both cameras");
+                setRejected(report, model, data.calibrated);
             } else {
                 report.F = toMat(model.F);
                 report.E = toMat(detail::skew(model.t) * model.R);
@@ -83,6 +96,8 @@ Estimation estimate(InputArray points1, InputArray points2, InputArray cameraMat
         } else {
             report.F = toMat(model.F);
         }
+    } else if (result.hasRejected) {
+        setRejected(report, result.rejected, data.calibrated);
     }
     report.iterations = result.iterations;
     report.pointsPerHypothesis = result.pointsPerHypothesis;

@@ -61,6 +61,70 @@ TwoViews degenerateScene(Degeneracy kind, int seed)
     return views;
 }
 
+// Median Sampson distance (px) of the first `count` correspondences (the scene's inliers).
+double medianSampson(const Mat& F, const TwoViews& v, int count)
+{
+    const Matx33d f(F);
+    std::vector<double> d;
+    for (int i = 0; i < count; ++i) {
+        const Vec3d x1(v.points1.at<double>(i, 0), v.points1.at<double>(i, 1), 1.0);
+        const Vec3d x2(v.points2.at<double>(i, 0), v.points2.at<double>(i, 1), 1.0);
+        const Vec3d l2 = f * x1, l1 = f.t() * x2;
+        const double e = x2.dot(l2);
+        d.push_back(std::abs(e) /
+                    std::sqrt(l2[0] * l2[0] + l2[1] * l2[1] + l1[0] * l1[0] + l1[1] * l1[1]));
+    }
+    std::nth_element(d.begin(), d.begin() + count / 2, d.end());
+    return d[static_cast<size_t>(count / 2)];
+}
+
+TEST(Rcme_Rejected, a_degenerate_scene_reports_the_rejected_f_that_fits_its_inliers)
+{
+    for (int seed = 0; seed < 2; ++seed) {
+        const TwoViews v = degenerateScene(Degeneracy::Plane, seed);
+        Params params;
+        params.randomGeneratorState = seed;
+        const Report r = estimateRelativeMotion(v.points1, v.points2, noArray(), params);
+        ASSERT_EQ(r.status, STATUS_DEGENERATE_CONFIGURATION) << seed;
+        EXPECT_TRUE(r.F.empty()) << seed;
+        ASSERT_EQ(r.rejectedF.size(), Size(3, 3)) << seed;
+        EXPECT_NEAR(cv::norm(r.rejectedF), 1.0, 1e-9) << seed;
+        EXPECT_LT(medianSampson(r.rejectedF, v, v.points1.rows / 2), 2.0) << seed;
+        EXPECT_TRUE(r.rejectedR.empty() && r.rejectedT.empty()) << seed; // no K, no motion
+    }
+}
+
+TEST(Rcme_Rejected, poor_quality_input_reports_its_most_supported_hypothesis_with_a_motion)
+{
+    cv::RNG rng(7);
+    Mat p1(300, 2, CV_64F), p2(300, 2, CV_64F);
+    rng.fill(p1, RNG::UNIFORM, 0, 640);
+    rng.fill(p2, RNG::UNIFORM, 0, 640);
+    const Matx33d K(500, 0, 320, 0, 500, 240, 0, 0, 1);
+    for (Method method : {METHOD_STANDARD, METHOD_PRCME}) {
+        Params params;
+        params.method = method;
+        params.maxIterations = 200;
+        const Report r = estimateRelativeMotion(p1, p2, Mat(K), params);
+        ASSERT_EQ(r.status, STATUS_POOR_QUALITY_INPUT) << method;
+        EXPECT_TRUE(r.F.empty() && r.R.empty() && r.t.empty()) << method;
+        ASSERT_EQ(r.rejectedF.size(), Size(3, 3)) << method;
+        ASSERT_EQ(r.rejectedR.size(), Size(3, 3)) << method;
+        ASSERT_EQ(r.rejectedT.size(), Size(1, 3)) << method;
+        EXPECT_NEAR(determinant(r.rejectedR), 1.0, 1e-9) << method;
+        EXPECT_NEAR(cv::norm(r.rejectedR * r.rejectedR.t(), Mat::eye(3, 3, CV_64F)), 0.0, 1e-9);
+        EXPECT_NEAR(cv::norm(r.rejectedT), 1.0, 1e-9) << method;
+    }
+}
+
+TEST(Rcme_Rejected, a_success_reports_no_rejected_model)
+{
+    const SyntheticScene s = genericTestScene(3);
+    const Report r = estimateRelativeMotion(s.points1, s.points2, s.cameraMatrix, Params());
+    ASSERT_EQ(r.status, STATUS_SUCCESS) << r.message;
+    EXPECT_TRUE(r.rejectedF.empty() && r.rejectedR.empty() && r.rejectedT.empty());
+}
+
 TEST(Rcme_Degeneracy, planar_scenes_and_pure_rotations_are_reported_degenerate)
 {
     const Method methods[] = {METHOD_STANDARD, METHOD_RCME, METHOD_PRCME, METHOD_MLESAC,

@@ -11,6 +11,8 @@ namespace detail {
 
 namespace {
 
+const char* const kNoCheirality = "no decomposition of E puts the inliers in front of both cameras";
+
 // Refines the selected model on its inliers and classifies again, until the inlier set stops
 // changing (a refined model usually gathers inliers its minimal sample missed). A refinement is
 // kept only if the scorer keeps it (Scorer::keepsRefinement), so a diverging refinement cannot
@@ -73,6 +75,29 @@ void optimizeLocally(const TwoViewData& data, EstimatorComponents& c, const Mode
     const Score score = c.scorer->score(data, refit);
     if (score.isCandidate)
         candidates.add(refit, score);
+}
+
+/* The most supported hypothesis of a run without candidates, as the method would have returned
+it without its acceptance tests: refitted on its inliers and, with K, given its motion. Only a
+diagnostic (Report::rejectedF...): a minimal sample's raw hypothesis would be judged far worse
+than what the data support. */
+Model polishRejected(const TwoViewData& data, EstimatorComponents& c, Model model)
+{
+    constexpr int kFitIterations = 20;
+    std::vector<uchar> mask;
+    c.scorer->classify(data, model, mask);
+    if (data.calibrated && !model.hasMotion && !recoverMotion(data, mask, model))
+        return model;
+    std::vector<int> inliers;
+    for (size_t i = 0; i < mask.size(); ++i)
+        if (mask[i])
+            inliers.push_back(static_cast<int>(i));
+    Model fitted = model;
+    if (fitModelOn(data, inliers, kFitIterations, fitted))
+        model = fitted;
+    if (data.calibrated)
+        recoverMotion(data, mask, model);
+    return model;
 }
 
 // With Params::isParallel, hypotheses are evaluated in batches of this many iterations. The size
@@ -233,6 +258,10 @@ private:
             Score& score = slot.scores[h];
             c_.scorer->commit(score);
             const Model& model = slot.models[h];
+            if (score.inlierCount > result.mostSupportedInliers) {
+                result.mostSupportedInliers = score.inlierCount;
+                result.mostSupported = model;
+            }
             if (!score.isCandidate || !candidates.add(model, score))
                 continue;
             if (c_.localOptimizer)
@@ -269,6 +298,16 @@ private:
 
 } // namespace
 
+void rejectModel(RansacResult& result, Status status, const std::string& message,
+                 const Model& model)
+{
+    result.status = status;
+    result.message = message;
+    result.rejected = model;
+    result.hasRejected = true;
+    std::fill(result.mask.begin(), result.mask.end(), 0);
+}
+
 void searchHypotheses(const TwoViewData& data, EstimatorComponents& components,
                       CandidateSet& candidates, RansacResult& result)
 {
@@ -301,6 +340,10 @@ RansacResult runRansac(const TwoViewData& data, EstimatorComponents& c)
             result.message =
                 cv::format("no hypothesis passed the acceptance tests in %d iterations", iteration);
         }
+        if (result.mostSupportedInliers >= 0) {
+            result.rejected = polishRejected(data, c, result.mostSupported);
+            result.hasRejected = true;
+        }
         return result;
     }
     result.model = best->model;
@@ -313,9 +356,7 @@ RansacResult runRansac(const TwoViewData& data, EstimatorComponents& c)
         // cheirality, then refined in motion space. Refining F first matters: the F of a noisy
         // minimal sample is far from any essential matrix.
         if (!recoverMotion(data, result.mask, result.model)) {
-            result.status = STATUS_DEGENERATE_CONFIGURATION;
-            result.message = "no decomposition of E puts the inliers in front of both cameras";
-            std::fill(result.mask.begin(), result.mask.end(), 0);
+            rejectModel(result, STATUS_DEGENERATE_CONFIGURATION, kNoCheirality, result.model);
             return result;
         }
         // The motion's maximum-likelihood fit on the F's inliers comes before classifying
@@ -327,15 +368,13 @@ RansacResult runRansac(const TwoViewData& data, EstimatorComponents& c)
         refineSelected(data, c, result);
     }
     if (data.calibrated && !decideMotionOnInliers(data, c, result)) {
-        result.status = STATUS_DEGENERATE_CONFIGURATION;
-        result.message = "no decomposition of E puts the inliers in front of both cameras";
-        std::fill(result.mask.begin(), result.mask.end(), 0);
+        rejectModel(result, STATUS_DEGENERATE_CONFIGURATION, kNoCheirality, result.model);
         return result;
     }
     if (!result.score.isCandidate) {
-        result.status = STATUS_POOR_QUALITY_INPUT;
-        result.message = "the motion closest to the selected hypothesis fails the acceptance tests";
-        std::fill(result.mask.begin(), result.mask.end(), 0);
+        rejectModel(result, STATUS_POOR_QUALITY_INPUT,
+                    "the motion closest to the selected hypothesis fails the acceptance tests",
+                    result.model);
         return result;
     }
     result.status = STATUS_SUCCESS;

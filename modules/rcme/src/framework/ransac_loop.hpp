@@ -27,7 +27,20 @@ struct RansacResult
     //! Mean number of correspondences whose residual was evaluated per hypothesis, by the
     //! verifiers and by scoring; NaN when there was no hypothesis.
     double pointsPerHypothesis = std::numeric_limits<double>::quiet_NaN();
+    //! The hypothesis with the most inliers the loop scored, candidate or not (inlierCount -1:
+    //! none was scored); becomes the rejected model when no candidate exists.
+    Model mostSupported;
+    int mostSupportedInliers = -1;
+    //! When the status is not success: the model the method would have returned without the
+    //! test that failed, for diagnostics (Report::rejectedF, rejectedR, rejectedT).
+    bool hasRejected = false;
+    Model rejected;
 };
+
+/** Turns `result` into a failure with `status`: the mask is cleared and `model` is kept as the
+rejected model. */
+void rejectModel(RansacResult& result, Status status, const std::string& message,
+                 const Model& model);
 
 /** The RANSAC loop shared by every method: sample, instantiate, verify, score, keep the best
 candidate, adapt the iteration bound; then refine the selected model and classify the points.

@@ -168,7 +168,8 @@ struct CV_EXPORTS_W_SIMPLE Params
 
 /** @brief Everything an estimation produced, for callers who want more than the model.
 
-Matrices are CV_64F; all but mask are empty unless status is #STATUS_SUCCESS.
+Matrices are CV_64F; all but mask and the rejected* diagnostics are empty unless status is
+#STATUS_SUCCESS.
 */
 struct CV_EXPORTS_W_SIMPLE Report
 {
@@ -195,6 +196,16 @@ struct CV_EXPORTS_W_SIMPLE Report
     empty when refinement is off */
     CV_PROP_RW Mat covariance;
     CV_PROP_RW double timeSeconds; //!< wall time of the call
+    /** Rejected, for diagnostics: when the status is not #STATUS_SUCCESS, the 3x3 F (pixels,
+    ||F|| = 1) the method would have returned without the test that failed: the selected model
+    when a later test (degeneracy, cheirality, acceptance after refinement) rejected it, else the
+    hypothesis with the most inliers, refitted on them. Empty on success, with too few points or
+    when no hypothesis was scored. Never a result: the status says it is not to be trusted. */
+    CV_PROP_RW Mat rejectedF;
+    //! Rejected, for diagnostics: the 3x3 rotation of rejectedF's motion (with a camera matrix)
+    CV_PROP_RW Mat rejectedR;
+    //! Rejected, for diagnostics: the 3x1 unit translation of rejectedF's motion (with K)
+    CV_PROP_RW Mat rejectedT;
 };
 
 /** @brief A short English name of a #Status value, e.g. "poor quality input".

@@ -570,7 +570,12 @@ PYBIND11_MODULE(rcme, m)
         .plain("pointsPerHypothesis", &Report::pointsPerHypothesis)
         .plain("meanEntropy", &Report::meanEntropy)
         .mat("covariance", &Report::covariance, "5x5 motion covariance or None")
-        .plain("timeSeconds", &Report::timeSeconds);
+        .plain("timeSeconds", &Report::timeSeconds)
+        .mat("rejectedF", &Report::rejectedF,
+             "rejected, for diagnostics: 3x3 F the failed estimation rejected, or None")
+        .mat("rejectedR", &Report::rejectedR, "rejected, for diagnostics: its rotation or None")
+        .mat("rejectedT", &Report::rejectedT,
+             "rejected, for diagnostics: its unit translation or None");
     reportFields.addRepr("Report");
 
     // --- SceneParams, SyntheticScene, MotionError

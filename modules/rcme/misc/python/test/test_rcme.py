@@ -512,6 +512,8 @@ class _RcmeSuite:
         self.assertAlmostEqual(rep.pointsPerHypothesis, n)
         self.assertGreaterEqual(rep.timeSeconds, 0.0)
         self.assertTrue(np.isnan(rep.meanEntropy))  # only RCME computes it
+        for name in ("rejectedF", "rejectedR", "rejectedT"):  # only without success
+            self.assertIsNone(getattr(rep, name), name)
         if rep.covariance is not None:
             self.assertEqual(rep.covariance.shape, (5, 5))
         self.assertLess(b.compareMotion(rep.R, rep.t, s.R, s.t).rotationDeg, 1.0)
@@ -556,6 +558,10 @@ class _RcmeSuite:
                 self.assertValidMask(rep.mask, n)
                 self.assertEqual(int(rep.mask.sum()), 0, name)
                 self.assertIsNone(rep.R, name)
+                # rejected, for diagnostics: the F (and motion) the degeneracy test turned down
+                self.assertEqual(rep.rejectedF.shape, (3, 3), name)
+                self.assertRotation(rep.rejectedR)
+                self.assertUnitTranslation(rep.rejectedT)
                 F, mask, status = b.findFundamentalMat(p1, p2, params)
                 self.assertEqual(status, b.STATUS_DEGENERATE_CONFIGURATION, name)
                 self.assertIsNone(F, name)
