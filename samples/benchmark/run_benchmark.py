@@ -216,6 +216,7 @@ def write_report(args, run):
         for dataset in real_datasets:
             lines += ["**%s, N = %d**\n" % (dataset, N),
                       report.detail_table(rows_real, names, dataset, N)]
+    lines += confusion_section(run, names, real_datasets, N_max)
     lines += ["### Time per call: RCME against OpenCV USAC_ACCURATE (real pairs)\n",
               "Exactly N hypotheses for rcme (OpenCV's USAC cannot be held to N, see above), "
               "medians over every real run:\n",
@@ -232,6 +233,41 @@ def write_report(args, run):
     with open(path, "w") as f:
         f.write("\n".join(lines))
     return path, png
+
+
+def confusion_section(run, names, real_datasets, N_max):
+    """The confusion tables (report.CONFUSION_LEGEND): the targets' rates per suite, then every
+    dataset and method, at exactly N_max hypotheses and at the libraries' adaptive defaults."""
+    real = [r for r in run["real"] if r["N"] == N_max]
+    pose = report._pose_datasets(run["real"])
+    corridor_rows = [r for r in run["synthetic"] if r["N"] == N_max]
+
+    def suites(rows):
+        return [("calibrated real pairs", [r for r in rows if r["dataset"] in pose]),
+                ("F-only real pairs", [r for r in rows if r["dataset"] not in pose])]
+
+    lines = ["## Confusion table: statuses against ground truth\n", report.CONFUSION_LEGEND
+             + " Percentages of the runs of the row; caught and false alarms as the targets of "
+             "issue 15 count them (a flag without a rejected model is in neither).\n",
+             "### Summary, exactly N = %d hypotheses\n" % N_max,
+             report.confusion_summary(suites(real) + [("corridor (synthetic)", corridor_rows),
+                                                      ("all suites", real + corridor_rows)],
+                                      names)]
+    defaults = run.get("defaults") or []
+    if defaults:
+        lines += ["### Summary, adaptive termination (at most N = %d, confidence %.2f)\n" % (
+            DEFAULT_SETTINGS_N, methods.DEFAULT_CONFIDENCE),
+            report.confusion_summary(suites(defaults), DEFAULT_SETTINGS_METHODS)]
+    lines += ["### Per dataset, exactly N = %d\n" % N_max,
+              report.confusion_table(real, names, real_datasets)]
+    if corridor_rows:
+        corridor_sets = sorted({r["dataset"] for r in corridor_rows})
+        lines += ["### Corridor, exactly N = %d\n" % N_max,
+                  report.confusion_table(corridor_rows, names, corridor_sets)]
+    if defaults:
+        lines += ["### Per dataset, adaptive termination\n",
+                  report.confusion_table(defaults, DEFAULT_SETTINGS_METHODS, real_datasets)]
+    return lines
 
 
 DEFAULT_SETTINGS_N = 1000
