@@ -61,14 +61,8 @@ Estimation estimate(InputArray points1, InputArray points2, InputArray cameraMat
         detail::makeTwoViewData(points1, points2, cameraMatrix, params);
     detail::EstimatorComponents components = detail::createEstimator(params, data);
     detail::RansacResult result = detail::runRansac(data, components);
-    if (result.status == STATUS_SUCCESS && params.degeneracyTest &&
-        detail::compareWithHomography(data, result.model.F, result.mask)
-            .homographyExplainsInliers) {
-        detail::rejectModel(result, STATUS_DEGENERATE_CONFIGURATION,
-                            "a homography explains the inliers as well as F (planar scene, pure "
-                            "rotation or too little parallax): the motion is not determined",
-                            result.model);
-    }
+    if (params.degeneracyTest)
+        detail::decideDegeneracy(data, components, result);
 
     Estimation out;
     Report& report = out.report;
@@ -96,13 +90,20 @@ Estimation estimate(InputArray points1, InputArray points2, InputArray cameraMat
         } else {
             report.F = toMat(model.F);
         }
-    } else if (result.hasRejected) {
-        setRejected(report, result.rejected, data.calibrated);
+    } else if (result.status == STATUS_PURE_ROTATION) {
+        // R only: the translation is not determined, reported as zero; F and E stay empty.
+        report.R = toMat(result.model.R);
+        report.t = Mat::zeros(3, 1, CV_64F);
+        if (result.model.uncertaintyDof == 3)
+            report.covariance = toMat(result.model.covariance.topLeftCorner<3, 3>());
+        out.inFront = out.mask;
     }
+    if (result.status != STATUS_SUCCESS && result.hasRejected)
+        setRejected(report, result.rejected, data.calibrated);
     report.iterations = result.iterations;
     report.pointsPerHypothesis = result.pointsPerHypothesis;
     report.meanEntropy = result.score.meanEntropy;
-    if (report.status != STATUS_SUCCESS)
+    if (report.status != STATUS_SUCCESS && report.status != STATUS_PURE_ROTATION)
         out.inFront.assign(out.mask.size(), 0);
     report.inlierCount = static_cast<int>(std::count(out.mask.begin(), out.mask.end(), 1));
     report.mask = Mat(static_cast<int>(out.mask.size()), 1, CV_8U, out.mask.data()).clone();

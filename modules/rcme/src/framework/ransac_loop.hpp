@@ -47,6 +47,19 @@ candidate, adapt the iteration bound; then refine the selected model and classif
 No hypothesis that is not a candidate is ever returned: with none, the status says why. */
 RansacResult runRansac(const TwoViewData& data, EstimatorComponents& components);
 
+/** The final decision on a successful run whose inliers a homography explains as well as F
+(Params::degeneracyTest). Without K, F is not determined: #STATUS_DEGENERATE_CONFIGURATION.
+With K, a rotation that explains the inliers as well as the motion gives #STATUS_PURE_ROTATION
+(model.R, t zero, F and E zero, the rotation's 3x3 covariance as uncertaintyDof 3); otherwise
+the scene is planar (or nearly) and the motion is the one, among the selected motion and the
+homography's decompositions (cv::decomposeHomographyMat), each refitted on the points it
+explains, of least truncated cost (MSAC, a point behind a camera costing as an outlier); when a
+distinct motion comes within ORB-SLAM's 0.75 of its support (inliers in front of both cameras),
+cheirality cannot tell the two and the status is degenerate. The motion rejected by either
+outcome is result.rejected. */
+void decideDegeneracy(const TwoViewData& data, EstimatorComponents& components,
+                      RansacResult& result);
+
 class CandidateSet;
 
 /** runRansac's hypothesis loop alone (on several threads when components.parallel): adds the

@@ -58,8 +58,8 @@ enum MinimalSolverKind
 
 /** @brief Outcome of an estimation. Every estimating function reports one.
 
-Only #STATUS_SUCCESS comes with a model; with any other status the returned matrices are empty
-and the mask is all zeros.
+Only #STATUS_SUCCESS comes with a model, and #STATUS_PURE_ROTATION with a rotation; with any
+other status the returned matrices are empty and the mask is all zeros.
 */
 enum Status
 #ifndef OPENCV_BINDING_PARSER // OpenCV 4.6's binding generator cannot read an enum base
@@ -72,9 +72,16 @@ enum Status
     poor to trust any motion from it (the paper's PQI). */
     STATUS_POOR_QUALITY_INPUT = 1,
     STATUS_NOT_ENOUGH_POINTS = 2, //!< fewer valid correspondences than the minimal solver needs
-    /** every sample, or the selected model, was degenerate: points identical or collinear, a
-    pure rotation, a motion that cheirality cannot resolve */
-    STATUS_DEGENERATE_CONFIGURATION = 3
+    /** every sample, or the selected model, was degenerate: points identical or collinear; a
+    planar scene or a pure rotation without a camera matrix (F is then not determined); with
+    one, a planar scene whose two motions cheirality cannot tell apart, or a motion that
+    cheirality cannot resolve. A planar scene with a camera matrix is otherwise a success. */
+    STATUS_DEGENERATE_CONFIGURATION = 3,
+    /** with a camera matrix, a rotation about the camera centre explains the inliers as well as
+    a motion (Torr's GRIC): R is returned, t is zero (not determined), E and F are empty, and the
+    covariance is the 3x3 one of the rotation increment. The mask marks the points the rotation
+    explains. */
+    STATUS_PURE_ROTATION = 4
 };
 
 /** @brief Parameters of the robust estimators, shaped like cv::UsacParams.
@@ -150,9 +157,12 @@ struct CV_EXPORTS_W_SIMPLE Params
     a candidate too. Off by default, as in the paper. */
     CV_PROP_RW bool localOptimization;
     /** After the loop, compare the final inliers' fit by F with their fit by a homography
-    (Torr's GRIC @cite Torr1998GRIC): when the homography explains them at least as well (a planar
-    scene, a rotation without translation, too little parallax), F and the motion are not determined
-    and the status is #STATUS_DEGENERATE_CONFIGURATION. Default true. */
+    (Torr's GRIC @cite Torr1998GRIC). When the homography explains them at least as well (a planar
+    scene, a rotation without translation, too little parallax): without a camera matrix F is not
+    determined and the status is #STATUS_DEGENERATE_CONFIGURATION; with one, a rotation that
+    explains them as well as a motion gives #STATUS_PURE_ROTATION, and otherwise the motion of
+    the plane is taken from E or from the homography's decomposition, whichever puts the most
+    inliers in front of both cameras (degenerate when two motions do). Default true. */
     CV_PROP_RW bool degeneracyTest;
     /** For #SAMPLER_PROSAC: one score per correspondence, higher is better (e.g. the negated
     ratio of the two best descriptor distances), CV_32F or CV_64F. Empty (default): the points
@@ -193,7 +203,8 @@ struct CV_EXPORTS_W_SIMPLE Report
     /** 5x5 covariance of the motion in the tangent space (rotation increment omega, rad, then
     the two components of the translation direction increment in an orthonormal basis of t's
     complement), only with a camera matrix: sigma^2 (J^T J)^-1 of the Gold Standard refinement,
-    empty when refinement is off */
+    empty when refinement is off. With #STATUS_PURE_ROTATION, 3x3: the rotation increment's
+    alone (R exp([omega]x)), since t is not determined. */
     CV_PROP_RW Mat covariance;
     CV_PROP_RW double timeSeconds; //!< wall time of the call
     /** Rejected, for diagnostics: when the status is not #STATUS_SUCCESS, the 3x3 F (pixels,

@@ -506,6 +506,7 @@ PYBIND11_MODULE(rcme, m)
     m.attr("STATUS_POOR_QUALITY_INPUT") = static_cast<int>(STATUS_POOR_QUALITY_INPUT);
     m.attr("STATUS_NOT_ENOUGH_POINTS") = static_cast<int>(STATUS_NOT_ENOUGH_POINTS);
     m.attr("STATUS_DEGENERATE_CONFIGURATION") = static_cast<int>(STATUS_DEGENERATE_CONFIGURATION);
+    m.attr("STATUS_PURE_ROTATION") = static_cast<int>(STATUS_PURE_ROTATION);
     m.attr("SCENE_CORRIDOR") = static_cast<int>(SCENE_CORRIDOR);
     m.attr("SCENE_GENERIC") = static_cast<int>(SCENE_GENERIC);
 
