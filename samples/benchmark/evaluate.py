@@ -34,7 +34,10 @@ def evaluate(method, pair, budget):
 def _against_truth(F, R, t, pair):
     """Errors of a model against the pair's ground truth and whether it is wrong (gt_fail):
     pose errors with a true pose, else the true matches' RMS Sampson error; {} when there is
-    nothing to judge (no model, or no ground truth for it)."""
+    nothing to judge (no model, or no ground truth for it). Where the truth has no translation
+    every motion is wrong, and a flag is a caught failure whatever it turned down."""
+    if pair.t_gt is not None and not np.any(pair.t_gt):
+        return dict(gt_fail=True)  # no translation (pure rotation, all outliers): no motion is right
     if pair.R_gt is not None and R is not None:
         error = rcme.compareMotion(R, t.reshape(3, 1), pair.R_gt, pair.t_gt.reshape(3, 1))
         return dict(rot=error.rotationDeg, trans=error.translationDeg, dq=error.dq, dt=error.dt,
