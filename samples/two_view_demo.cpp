@@ -242,9 +242,12 @@ const char* statusExplanation(cv::rcme::Status status)
         return "fewer valid correspondences than the minimal solver needs";
     case cv::rcme::STATUS_DEGENERATE_CONFIGURATION:
         return "the configuration does not determine the motion: a homography explains the "
-               "inliers as well as F (planar scene, pure rotation or too little parallax), the "
-               "samples were degenerate (identical or collinear points), or cheirality cannot "
-               "resolve the motion";
+               "inliers as well as F without a camera matrix (planar scene, pure rotation or too "
+               "little parallax), two motions of a planar scene remain, the samples were "
+               "degenerate (identical or collinear points), or cheirality cannot resolve the "
+               "motion";
+    case cv::rcme::STATUS_PURE_ROTATION:
+        return "the camera only rotated: R is determined, the translation is not (t is zero)";
     }
     return "unknown status";
 }

@@ -43,8 +43,11 @@ class Budget:
 # degenerate (a homography explains them about as well as F), or no model for another reason
 # (OpenCV returned none, too few points).
 PQI, DEGENERATE, NO_MODEL = "PQI", "degenerate", "no model"
+PURE_ROTATION = "pure rotation"
 RCME_OUTCOMES = {int(rcme.STATUS_POOR_QUALITY_INPUT): PQI,
                  int(rcme.STATUS_DEGENERATE_CONFIGURATION): DEGENERATE}
+if hasattr(rcme, "STATUS_PURE_ROTATION"):
+    RCME_OUTCOMES[int(rcme.STATUS_PURE_ROTATION)] = PURE_ROTATION
 
 
 @dataclass
@@ -56,6 +59,14 @@ class Estimate:
     t: object = None
     mask: object = None
     seconds: float = 0.0
+    # A status that says "do not trust a motion" (rcme's non-success statuses); OpenCV's
+    # estimators have none: a run of theirs without a model is NO_MODEL, not flagged.
+    flagged: bool = False
+    # rcme's Report.rejectedF/R/t when flagged: the model turned down, judged to tell a caught
+    # failure from a false alarm (None when there was none).
+    rejected_F: object = None
+    rejected_R: object = None
+    rejected_t: object = None
 
 
 def rcme_params(method, budget):
@@ -104,6 +115,13 @@ def _run_rcme(method):
             estimate.F = _normalized(np.asarray(report.F))
             if K is not None:
                 estimate.R, estimate.t = np.asarray(report.R), np.asarray(report.t).reshape(3, 1)
+            return estimate
+        estimate.flagged = True
+        if report.rejectedF is not None:
+            estimate.rejected_F = _normalized(np.asarray(report.rejectedF))
+        if K is not None and report.rejectedR is not None:
+            estimate.rejected_R = np.asarray(report.rejectedR)
+            estimate.rejected_t = np.asarray(report.rejectedT).reshape(3, 1)
         return estimate
     return run
 

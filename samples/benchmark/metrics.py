@@ -9,7 +9,7 @@ CHI2_2_95 = 5.991464547107979  # chi2_2^-1(0.95), the paper's tau^2 = sigma^2 * 
 PAPER_KAPPA = 0.5              # failure when n_I* / n_I <= kappa
 ROTATION_FAILURE_DEG = 5.0     # failure against ground truth: rotation error above this ...
 TRANSLATION_FAILURE_DEG = 15.0  # ... or translation direction error above this
-F_FAILURE_PX = 5.0             # F-only pairs: median Sampson error of the true matches above this
+F_FAILURE_PX = 5.0             # F-only pairs: RMS Sampson error of the true matches above this
 
 
 def _skew(v):
@@ -115,8 +115,9 @@ def pose_failure(rotation_deg, translation_deg):
 
 
 def f_error(F, gt_points):
-    """Median Sampson distance (px) of the true correspondences under an estimated F."""
-    return float(np.median(sampson_distance(F, gt_points[:, :2], gt_points[:, 2:])))
+    """RMS Sampson distance (px) of the true correspondences under an estimated F."""
+    d = sampson_distance(F, gt_points[:, :2], gt_points[:, 2:])
+    return float(np.sqrt(np.mean(d * d)))
 
 
 def precision_recall(mask, truth):

@@ -182,7 +182,7 @@ THRESHOLDS_TEXT = (
     "the method's output; n_I* = the same after a Huber-robust Gold Standard MLE started from "
     "it (over R, t when K is known, over a rank-2 F otherwise); failure when n_I*/n_I <= %.1f. "
     "GT failure: rotation error > %.0f deg or translation direction error > %.0f deg (pairs with "
-    "a pose), or median Sampson error of the true matches under the estimated F > %.0f px "
+    "a pose), or RMS Sampson error of the true matches under the estimated F > %.0f px "
     "(F-only pairs). Both failure rates, PQI, degenerate and no model are %% of all runs; a run "
     "without a model is not a failure (as the paper's Table II). PQI: rcme declined (poor quality "
     "input); degenerate: rcme's degeneracy test (`Params::degeneracyTest`, on by default) found "
@@ -190,3 +190,95 @@ THRESHOLDS_TEXT = (
     "(or too few points)." % (
         np.sqrt(metrics.CHI2_2_95), metrics.PAPER_KAPPA, metrics.ROTATION_FAILURE_DEG,
         metrics.TRANSLATION_FAILURE_DEG, metrics.F_FAILURE_PX))
+
+
+# The confusion table: every run with ground truth in one cell. Right / wrong by
+# metrics.pose_failure (pairs with a pose) or the true matches' RMS Sampson error (F-only);
+# a flag (rcme's statuses other than success) is judged through Report.rejectedF/R/t.
+CONFUSION_CELLS = [("returned_right", "returned & right"),
+                   ("returned_wrong", "returned & wrong (undetected)"),
+                   ("flagged_wrong", "flagged & wrong (caught)"),
+                   ("flagged_right", "flagged & right (false alarm)"),
+                   ("flagged_unjudged", "flagged, no rejected model"),
+                   ("no_model", "no model, no status")]
+
+CONFUSION_LEGEND = (
+    "Each run with ground truth is in one cell: **returned & right**, **returned & wrong** "
+    "(an undetected failure), **flagged & wrong** (a caught failure), **flagged & right** "
+    "(a false alarm). Right: rotation error <= %.0f deg and translation direction error <= "
+    "%.0f deg (pairs with a pose), or an RMS Sampson distance of the labelled true "
+    "correspondences <= %.0f px (F-only pairs: AdelaideRMF, MAGSAC vpts). Flagged: an rcme "
+    "status other than success; it is judged through the model the run turned down "
+    "(`Report.rejectedF`, `rejectedR`, `rejectedT`); *flagged, no rejected model*: no "
+    "hypothesis (or no motion) was there to judge. OpenCV's estimators have no status: only the "
+    "returned cells, plus *no model* when they return none." % (
+        metrics.ROTATION_FAILURE_DEG, metrics.TRANSLATION_FAILURE_DEG, metrics.F_FAILURE_PX))
+
+
+def confusion_cell(row):
+    """The cell of one run, or None when the pair has no ground truth."""
+    if row["ok"]:
+        if "gt_fail" not in row:
+            return None
+        return "returned_wrong" if row["gt_fail"] else "returned_right"
+    if not row.get("flagged"):
+        return "no_model"
+    wrong = row.get("rejected_wrong")
+    if wrong is None:
+        return "flagged_unjudged"
+    return "flagged_wrong" if wrong else "flagged_right"
+
+
+def confusion_counts(rows):
+    counts = {key: 0 for key, _ in CONFUSION_CELLS}
+    for row in rows:
+        cell = confusion_cell(row)
+        if cell is not None:
+            counts[cell] += 1
+    return counts
+
+
+def _count_pct(count, total):
+    return "%d (%s %%)" % (count, _pct(count, total))
+
+
+def confusion_rates(counts):
+    """undetected % of the runs, caught % of the wrong ones, false alarms % of the right ones
+    (a flag without a rejected model is neither: nothing was there to judge)."""
+    total = sum(counts.values())
+    wrong = counts["returned_wrong"] + counts["flagged_wrong"]
+    right = counts["returned_right"] + counts["flagged_right"]
+    return {"runs": total, "undetected": _pct(counts["returned_wrong"], total),
+            "caught": _pct(counts["flagged_wrong"], wrong),
+            "false_alarm": _pct(counts["flagged_right"], right)}
+
+
+def confusion_table(rows, method_names, datasets):
+    """A row per dataset and method: the count (and %) of runs in each cell."""
+    lines = []
+    for dataset in datasets + ["all"]:
+        subset = rows if dataset == "all" else _select(rows, dataset=dataset)
+        for method in method_names:
+            counts = confusion_counts(_select(subset, method=method))
+            total = sum(counts.values())
+            if total:
+                rates = confusion_rates(counts)
+                lines.append([dataset, method, total]
+                             + [_count_pct(counts[k], total) for k, _ in CONFUSION_CELLS]
+                             + [rates["caught"], rates["false_alarm"]])
+    return _table(["dataset", "method", "runs"] + [label for _, label in CONFUSION_CELLS]
+                  + ["caught % of wrong", "false alarms % of right"], lines)
+
+
+def confusion_summary(groups, method_names):
+    """groups: [(label, rows)]; a row per group and method with the targets' three rates."""
+    lines = []
+    for label, rows in groups:
+        for method in method_names:
+            counts = confusion_counts(_select(rows, method=method))
+            if sum(counts.values()):
+                r = confusion_rates(counts)
+                lines.append([label, method, r["runs"], r["undetected"], r["caught"],
+                              r["false_alarm"]])
+    return _table(["suite", "method", "runs", "undetected % of runs", "caught % of wrong",
+                   "false alarms % of right"], lines)

@@ -22,6 +22,7 @@ import cv2
 import corridor
 import datasets
 import evaluate
+import hard_cases
 import matching
 import methods
 import pairs
@@ -79,6 +80,11 @@ def parse_args(argv):
     ap.add_argument("--iterations", type=int, nargs="+", default=[200, 500, 1000])
     ap.add_argument("--seeds", type=int, default=3, help="seeds per real pair")
     ap.add_argument("--corridor-seeds", type=int, default=50)
+    ap.add_argument("--hard-seeds", type=int, default=10,
+                    help="seeds per case of the hard-case suite (hard_cases.py)")
+    ap.add_argument("--hard-only", action="store_true",
+                    help="run the hard-case suite alone, add it to the last run's record in "
+                         "--cache and rewrite the report")
     ap.add_argument("--max-references", type=int, default=0, metavar="K",
                     help="at most K evenly spaced reference frames per sequence (0: all)")
     ap.add_argument("--sigma", type=float, default=1.0, help="noise (px); threshold 1.96 sigma")
@@ -90,6 +96,7 @@ def parse_args(argv):
     args = ap.parse_args(argv)
     if args.quick:
         args.iterations, args.seeds, args.corridor_seeds, args.max_references = [200], 1, 10, 2
+        args.hard_seeds = 2
     return args
 
 
@@ -216,6 +223,7 @@ def write_report(args, run):
         for dataset in real_datasets:
             lines += ["**%s, N = %d**\n" % (dataset, N),
                       report.detail_table(rows_real, names, dataset, N)]
+    lines += confusion_section(run, names, real_datasets, N_max)
     lines += ["### Time per call: RCME against OpenCV USAC_ACCURATE (real pairs)\n",
               "Exactly N hypotheses for rcme (OpenCV's USAC cannot be held to N, see above), "
               "medians over every real run:\n",
@@ -232,6 +240,51 @@ def write_report(args, run):
     with open(path, "w") as f:
         f.write("\n".join(lines))
     return path, png
+
+
+def confusion_section(run, names, real_datasets, N_max):
+    """The confusion tables (report.CONFUSION_LEGEND): the targets' rates per suite, then every
+    dataset and method, at exactly N_max hypotheses and at the libraries' adaptive defaults."""
+    real = [r for r in run["real"] if r["N"] == N_max]
+    pose = report._pose_datasets(run["real"])
+    corridor_rows = [r for r in run["synthetic"] if r["N"] == N_max]
+    hard_rows = run.get("hard") or []
+
+    def suites(rows):
+        return [("calibrated real pairs", [r for r in rows if r["dataset"] in pose]),
+                ("F-only real pairs", [r for r in rows if r["dataset"] not in pose])]
+
+    lines = ["## Confusion table: statuses against ground truth\n", report.CONFUSION_LEGEND
+             + " Percentages of the runs of the row; caught and false alarms as the targets of "
+             "issue 15 count them (a flag without a rejected model is in neither).\n",
+             "### Summary, exactly N = %d hypotheses\n" % N_max,
+             report.confusion_summary(suites(real) + [("corridor (synthetic)", corridor_rows),
+                                                      ("hard cases (synthetic)", hard_rows),
+                                                      ("all suites",
+                                                       real + corridor_rows + hard_rows)],
+                                      names)]
+    defaults = run.get("defaults") or []
+    if defaults:
+        lines += ["### Summary, adaptive termination (at most N = %d, confidence %.2f)\n" % (
+            DEFAULT_SETTINGS_N, methods.DEFAULT_CONFIDENCE),
+            report.confusion_summary(suites(defaults), DEFAULT_SETTINGS_METHODS)]
+    lines += ["### Per dataset, exactly N = %d\n" % N_max,
+              report.confusion_table(real, names, real_datasets)]
+    if corridor_rows:
+        corridor_sets = sorted({r["dataset"] for r in corridor_rows})
+        lines += ["### Corridor, exactly N = %d\n" % N_max,
+                  report.confusion_table(corridor_rows, names, corridor_sets)]
+    if hard_rows:
+        lines += ["### Hard cases, exactly N = %d\n" % N_max,
+                  "`samples/benchmark/hard_cases.py`, deterministic per seed. Pure rotation and "
+                  "all outliers have no translation to return: every returned motion is wrong "
+                  "there, every flag a caught failure.\n",
+                  report.confusion_table(hard_rows, names,
+                                         sorted({r["dataset"] for r in hard_rows}))]
+    if defaults:
+        lines += ["### Per dataset, adaptive termination\n",
+                  report.confusion_table(defaults, DEFAULT_SETTINGS_METHODS, real_datasets)]
+    return lines
 
 
 DEFAULT_SETTINGS_N = 1000
@@ -316,9 +369,14 @@ def main(argv=None):
     start = time.time()
     # the record of the run, so that --report-only can redraw the report without rerunning
     record_path = os.path.join(args.cache, "run_%s.json" % ("quick" if args.quick else "full"))
-    if args.report_only:
+    if args.report_only or args.hard_only:
         with open(record_path) as f:
             run = json.load(f)
+        if args.hard_only:
+            run["hard"] = run_all(hard_cases.hard_case_pairs(args.hard_seeds),
+                                  [max(args.iterations)], 1, args.sigma, "hard cases")
+            with open(record_path, "w") as f:
+                json.dump(run, f)
     else:
         if not any(datasets.load_all(args.data)):
             print("skipped: no data under %s (pass --data; ../shared/data/README.md)" % args.data)
@@ -331,8 +389,11 @@ def main(argv=None):
         rows_synthetic = run_all(corridor_pairs(args), [max(args.iterations)], 1, args.sigma,
                                  "corridor")
         rows_real = run_all(task_pairs, args.iterations, args.seeds, args.sigma, "real")
+        rows_hard = run_all(hard_cases.hard_case_pairs(args.hard_seeds), [max(args.iterations)],
+                            1, args.sigma, "hard cases")
         rows_defaults = run_defaults(task_pairs, args.sigma)
         run = {"synthetic": rows_synthetic, "real": rows_real, "defaults": rows_defaults,
+               "hard": rows_hard,
                "notes": notes,
                "elapsed": time.time() - start, "command": command.strip(),
                "date": datetime.datetime.utcnow().strftime("%Y-%m-%d %H:%M UTC"),

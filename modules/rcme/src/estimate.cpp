@@ -53,6 +53,18 @@ void fail(Report& report, std::vector<uchar>& mask, Status status, const std::st
     std::fill(mask.begin(), mask.end(), 0);
 }
 
+// The model a failed estimation rejected, for diagnostics only (Report::rejectedF...).
+void setRejected(Report& report, const detail::Model& model, bool calibrated)
+{
+    if (!model.F.allFinite() || model.F.isZero())
+        return;
+    report.rejectedF = toMat(model.F);
+    if (calibrated && model.hasMotion) {
+        report.rejectedR = toMat(model.R);
+        report.rejectedT = toMat(model.t);
+    }
+}
+
 Estimation estimate(InputArray points1, InputArray points2, InputArray cameraMatrix,
                     const Params& params)
 {
@@ -64,14 +76,8 @@ Estimation estimate(InputArray points1, InputArray points2, InputArray cameraMat
         components.deadline =
             start + static_cast<int64>(std::min(params.timeBudget, 1e9) * getTickFrequency());
     detail::RansacResult result = detail::runRansac(data, components);
-    if (result.status == STATUS_SUCCESS && params.degeneracyTest &&
-        detail::compareWithHomography(data, result.model.F, result.mask)
-            .homographyExplainsInliers) {
-        result.status = STATUS_DEGENERATE_CONFIGURATION;
-        result.message = "a homography explains the inliers as well as F (planar scene, pure "
-                         "rotation or too little parallax): the motion is not determined";
-        std::fill(result.mask.begin(), result.mask.end(), 0);
-    }
+    if (params.degeneracyTest)
+        detail::decideDegeneracy(data, components, result);
 
     Estimation out;
     Report& report = out.report;
@@ -87,6 +93,7 @@ Estimation estimate(InputArray points1, InputArray points2, InputArray cameraMat
                                            &out.mask, &out.inFront) == 0) {
                 fail(report, out.mask, STATUS_DEGENERATE_CONFIGURATION,
                      "no decomposition of E puts the inliers in front of both cameras");
+                setRejected(report, model, data.calibrated);
             } else {
                 report.F = toMat(model.F);
                 report.E = toMat(detail::skew(model.t) * model.R);
@@ -100,11 +107,20 @@ Estimation estimate(InputArray points1, InputArray points2, InputArray cameraMat
         }
         if (report.status == STATUS_SUCCESS)
             report.noiseSigma = model.noiseSigma;
+    } else if (result.status == STATUS_PURE_ROTATION) {
+        // R only: the translation is not determined, reported as zero; F and E stay empty.
+        report.R = toMat(result.model.R);
+        report.t = Mat::zeros(3, 1, CV_64F);
+        if (result.model.uncertaintyDof == 3)
+            report.covariance = toMat(result.model.covariance.topLeftCorner<3, 3>());
+        out.inFront = out.mask;
     }
+    if (result.status != STATUS_SUCCESS && result.hasRejected)
+        setRejected(report, result.rejected, data.calibrated);
     report.iterations = result.iterations;
     report.pointsPerHypothesis = result.pointsPerHypothesis;
     report.meanEntropy = result.score.meanEntropy;
-    if (report.status != STATUS_SUCCESS)
+    if (report.status != STATUS_SUCCESS && report.status != STATUS_PURE_ROTATION)
         out.inFront.assign(out.mask.size(), 0);
     report.inlierCount = static_cast<int>(std::count(out.mask.begin(), out.mask.end(), 1));
     report.mask = Mat(static_cast<int>(out.mask.size()), 1, CV_8U, out.mask.data()).clone();

@@ -63,6 +63,8 @@ String statusToString(Status status)
         return "not enough points";
     case STATUS_DEGENERATE_CONFIGURATION:
         return "degenerate configuration";
+    case STATUS_PURE_ROTATION:
+        return "pure rotation";
     }
     return cv::format("unknown status %d", static_cast<int>(status));
 }

@@ -14,6 +14,7 @@
 
 #include "framework/components.hpp"
 #include "geometry/epipolar.hpp"
+#include "geometry/motion_parameterization.hpp"
 #include "geometry/statistics.hpp"
 
 #include <opencv2/calib3d.hpp>
@@ -34,19 +35,31 @@ double gric(double sumOfCappedErrors, int n, double manifoldDimension, double pa
            parameters * std::log(kDataDimension * n);
 }
 
-// First-order geometric error of x2 ~ H x1 (two equations of x2 x H x1 = 0), squared, pixels^2.
-double homographySampsonSquared(const Eigen::Matrix3d& H, const Eigen::Vector2d& x1,
-                                const Eigen::Vector2d& x2)
+/* First-order geometric error of x2 ~ H x1 (two equations of x2 x H x1 = 0), whitened: its
+squared norm is the squared Sampson error (pixels^2), and it is a least-squares residual. False
+where the error is undefined. */
+bool homographySampsonResidual(const Eigen::Matrix3d& H, const Eigen::Vector2d& x1,
+                               const Eigen::Vector2d& x2, Eigen::Vector2d& whitened)
 {
     const Eigen::Vector3d Hx = H * homogeneous(x1);
     const Eigen::Vector2d residual(x2.y() * Hx.z() - Hx.y(), Hx.x() - x2.x() * Hx.z());
     Eigen::Matrix<double, 2, 4> J; // d residual / d(x1, y1, x2, y2)
     J << x2.y() * H(2, 0) - H(1, 0), x2.y() * H(2, 1) - H(1, 1), 0.0, Hx.z(),
         H(0, 0) - x2.x() * H(2, 0), H(0, 1) - x2.x() * H(2, 1), -Hx.z(), 0.0;
-    const Eigen::Matrix2d JJt = J * J.transpose();
-    if (!(std::abs(JJt.determinant()) > 0.0))
+    const Eigen::LLT<Eigen::Matrix2d> JJt(J * J.transpose());
+    if (JJt.info() != Eigen::Success)
+        return false;
+    whitened = JJt.matrixL().solve(residual);
+    return whitened.allFinite();
+}
+
+double homographySampsonSquared(const Eigen::Matrix3d& H, const Eigen::Vector2d& x1,
+                                const Eigen::Vector2d& x2)
+{
+    Eigen::Vector2d whitened;
+    if (!homographySampsonResidual(H, x1, x2, whitened))
         return std::numeric_limits<double>::infinity();
-    return residual.dot(JJt.inverse() * residual);
+    return whitened.squaredNorm();
 }
 
 /* The noise of the points that the homography explains, from the median of their squared
@@ -131,7 +144,170 @@ HomographyComparison compareWithHomography(const TwoViewData& data, const Eigen:
     result.fundamentalGric = gric(fitF, n, 3, 7);
     result.homographyGric = gric(fitH, n, 2, 8);
     result.homographyExplainsInliers = result.homographyGric <= result.fundamentalGric;
+    result.H = H;
     return result;
+}
+
+namespace {
+
+// The homography of a rotation about the camera centre: x2 ~ K R K^-1 x1.
+Eigen::Matrix3d rotationHomography(const TwoViewData& data, const Eigen::Matrix3d& R)
+{
+    return data.K * R * data.Kinv;
+}
+
+// Gauss-Newton over R exp([omega]x) on the whitened homography Sampson residuals of `indices`
+// (numeric derivatives: three parameters, a handful of steps). Returns J^T J at the end.
+Eigen::Matrix3d refineRotation(const TwoViewData& data, const std::vector<int>& indices,
+                               Eigen::Matrix3d& R)
+{
+    constexpr int kSteps = 10;
+    constexpr double kDelta = 1e-7;
+    const auto residuals = [&](const Eigen::Matrix3d& rotation, Eigen::VectorXd& r) {
+        const Eigen::Matrix3d H = rotationHomography(data, rotation);
+        r.resize(2 * static_cast<Eigen::Index>(indices.size()));
+        for (size_t k = 0; k < indices.size(); ++k) {
+            Eigen::Vector2d w = Eigen::Vector2d::Zero();
+            const size_t i = static_cast<size_t>(indices[k]);
+            homographySampsonResidual(H, data.points1[i], data.points2[i], w);
+            r.segment<2>(2 * static_cast<Eigen::Index>(k)) = w;
+        }
+    };
+    Eigen::VectorXd r, shifted;
+    Eigen::MatrixXd J(2 * static_cast<Eigen::Index>(indices.size()), 3);
+    Eigen::Matrix3d JtJ = Eigen::Matrix3d::Zero();
+    residuals(R, r);
+    for (int step = 0; step <= kSteps; ++step) {
+        for (int k = 0; k < 3; ++k) {
+            residuals(R * rotationExp(Eigen::Vector3d::Unit(k) * kDelta), shifted);
+            J.col(k) = (shifted - r) / kDelta;
+        }
+        JtJ = J.transpose() * J;
+        if (step == kSteps)
+            break;
+        const Eigen::Vector3d omega = JtJ.ldlt().solve(-J.transpose() * r);
+        if (!omega.allFinite())
+            break;
+        const Eigen::Matrix3d candidate = R * rotationExp(omega);
+        residuals(candidate, shifted);
+        if (!(shifted.squaredNorm() < r.squaredNorm()))
+            break;
+        R = candidate;
+        r = shifted;
+    }
+    return JtJ;
+}
+
+} // namespace
+
+RotationComparison compareWithRotation(const TwoViewData& data, const Eigen::Matrix3d& F,
+                                       const std::vector<uchar>& mask)
+{
+    CV_Assert(data.calibrated);
+    RotationComparison result;
+    std::vector<int> inliers;
+    for (size_t i = 0; i < mask.size(); ++i)
+        if (mask[i])
+            inliers.push_back(static_cast<int>(i));
+    if (inliers.size() < 8)
+        return result;
+    // The rotation that best aligns the viewing rays (orthogonal Procrustes), then refined on the
+    // points it explains.
+    Eigen::Matrix3d correlation = Eigen::Matrix3d::Zero();
+    for (int i : inliers) {
+        const size_t k = static_cast<size_t>(i);
+        correlation += (data.Kinv * homogeneous(data.points2[k])).normalized() *
+                       (data.Kinv * homogeneous(data.points1[k])).normalized().transpose();
+    }
+    const Eigen::JacobiSVD<Eigen::Matrix3d> svd(correlation,
+                                                Eigen::ComputeFullU | Eigen::ComputeFullV);
+    Eigen::Matrix3d sign = Eigen::Matrix3d::Identity();
+    sign(2, 2) = (svd.matrixU() * svd.matrixV().transpose()).determinant() < 0 ? -1.0 : 1.0;
+    Eigen::Matrix3d R = svd.matrixU() * sign * svd.matrixV().transpose();
+
+    // The two-dimensional error of a true match: chi-square, 2 DoF, as for the homography.
+    const double cut = data.sigma * data.sigma * chiSquareQuantile(0.95, 2);
+    std::vector<int> explained;
+    Eigen::Matrix3d JtJ = Eigen::Matrix3d::Zero();
+    for (int round = 0; round < 2; ++round) {
+        const Eigen::Matrix3d H = rotationHomography(data, R);
+        explained.clear();
+        for (int i : inliers) {
+            const size_t k = static_cast<size_t>(i);
+            if (homographySampsonSquared(H, data.points1[k], data.points2[k]) <= cut)
+                explained.push_back(i);
+        }
+        if (explained.size() < 8)
+            return result;
+        JtJ = refineRotation(data, explained, R);
+    }
+
+    // GRIC of the rotation (manifold dimension 2, 3 parameters) against the motion's F
+    // (dimension 3, 5 parameters) over the points either explains, with the rotation's noise.
+    const Eigen::Matrix3d H = rotationHomography(data, R);
+    const double thresholdSquared = data.threshold * data.threshold;
+    std::vector<double> rotationErrors, motionErrors;
+    result.inliers.assign(mask.size(), 0);
+    for (size_t i = 0; i < mask.size(); ++i) {
+        const double errorR = homographySampsonSquared(H, data.points1[i], data.points2[i]);
+        const double errorF = sampsonDistanceSquared(F, data.points1[i], data.points2[i]);
+        result.inliers[i] = errorR <= cut;
+        if (mask[i] && (errorR <= cut || errorF <= thresholdSquared)) {
+            rotationErrors.push_back(errorR);
+            motionErrors.push_back(errorF);
+        }
+    }
+    const double sigma = homographyInlierNoise(data.sigma, rotationErrors);
+    if (sigma <= 0.0)
+        return result;
+    double fitR = 0.0, fitF = 0.0;
+    for (size_t i = 0; i < rotationErrors.size(); ++i) {
+        fitR += std::min(rotationErrors[i] / (sigma * sigma), 2.0 * (kDataDimension - 2));
+        fitF += std::min(motionErrors[i] / (sigma * sigma), 2.0 * (kDataDimension - 3));
+    }
+    const int n = static_cast<int>(rotationErrors.size());
+    result.rotationGric = gric(fitR, n, 2, 3);
+    result.motionGric = gric(fitF, n, 3, 5);
+    result.rotationExplainsInliers = result.rotationGric <= result.motionGric;
+    result.R = R;
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(JtJ);
+    if (eig.eigenvalues()(0) > 1e-10 * eig.eigenvalues()(2)) {
+        result.covariance = data.sigma * data.sigma * eig.eigenvectors() *
+                            eig.eigenvalues().cwiseInverse().asDiagonal() *
+                            eig.eigenvectors().transpose();
+        result.hasCovariance = true;
+    }
+    return result;
+}
+
+std::vector<Model> homographyMotions(const TwoViewData& data, const Eigen::Matrix3d& H)
+{
+    CV_Assert(data.calibrated);
+    Mat Hmat(3, 3, CV_64F), Kmat(3, 3, CV_64F);
+    for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c) {
+            Hmat.at<double>(r, c) = H(r, c);
+            Kmat.at<double>(r, c) = data.K(r, c);
+        }
+    std::vector<Mat> rotations, translations, normals;
+    decomposeHomographyMat(Hmat, Kmat, rotations, translations, normals);
+    std::vector<Model> motions;
+    for (size_t s = 0; s < rotations.size(); ++s) {
+        Model m;
+        for (int r = 0; r < 3; ++r) {
+            for (int c = 0; c < 3; ++c)
+                m.R(r, c) = rotations[s].at<double>(r, c);
+            m.t(r) = translations[s].at<double>(r);
+        }
+        if (!(m.t.norm() > 1e-9) || !m.R.allFinite())
+            continue; // a rotation alone: no motion direction to start from
+        m.t.normalize();
+        m.hasMotion = true;
+        m.E = skew(m.t) * m.R;
+        m.F = fundamentalFromEssential(m.E, data.Kinv);
+        motions.push_back(m);
+    }
+    return motions;
 }
 
 } // namespace detail

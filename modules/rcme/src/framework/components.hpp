@@ -244,6 +244,7 @@ struct HomographyComparison
     double homographyGric = 0.0;
     //! A homography explains the inliers at least as well as F: planar scene or pure rotation.
     bool homographyExplainsInliers = false;
+    Eigen::Matrix3d H = Eigen::Matrix3d::Zero(); //!< the homography (pixels), when fitted
 };
 /** Torr's GRIC of F and of a homography fitted (RANSAC) to the method's inliers `mask` and F's
 support (the points within data.threshold of it), over the points either model explains, with
@@ -251,6 +252,29 @@ the noise of the homography's inliers (at most data.sigma); with fewer than 8 po
 homography, nothing is flagged. */
 HomographyComparison compareWithHomography(const TwoViewData& data, const Eigen::Matrix3d& F,
                                            const std::vector<uchar>& mask);
+
+//! With K, the inliers against a rotation about the camera centre (x2 ~ K R K^-1 x1).
+struct RotationComparison
+{
+    double rotationGric = 0.0;
+    double motionGric = 0.0;
+    //! The rotation explains the inliers at least as well as the motion: no translation seen.
+    bool rotationExplainsInliers = false;
+    Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
+    //! sigma^2 (J^T J)^-1 of the rotation increment omega, R exp([omega]x), when determined.
+    Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
+    bool hasCovariance = false;
+    std::vector<uchar> inliers; //!< the points the rotation explains (2-DoF chi-square, 95 %)
+};
+/** Fits a rotation to the inliers `mask` (Procrustes on the viewing rays, then Gauss-Newton on
+the homography Sampson error) and compares it with the motion of F by Torr's GRIC (rotation:
+manifold dimension 2, 3 parameters; motion: 3 and 5), as compareWithHomography does. Calibrated
+data only. */
+RotationComparison compareWithRotation(const TwoViewData& data, const Eigen::Matrix3d& F,
+                                       const std::vector<uchar>& mask);
+//! The motions (R, unit t) of cv::decomposeHomographyMat(H, K), as models with E and F set;
+//! decompositions without translation are left out. Calibrated data only.
+std::vector<Model> homographyMotions(const TwoViewData& data, const Eigen::Matrix3d& H);
 
 /** Gold Standard fit of `model` (motion if it has one, else F) on the points `indices`, with the
 first-order covariance of the result (Model::uncertaintyDof and friends; left at 0 when the

@@ -4,12 +4,15 @@
 #include "framework/ransac_loop.hpp"
 
 #include "framework/candidate_set.hpp"
+#include "geometry/epipolar.hpp"
 
 namespace cv {
 namespace rcme {
 namespace detail {
 
 namespace {
+
+const char* const kNoCheirality = "no decomposition of E puts the inliers in front of both cameras";
 
 // Refines the selected model on its inliers and classifies again, until the inlier set stops
 // changing (a refined model usually gathers inliers its minimal sample missed). A refinement is
@@ -73,6 +76,29 @@ void optimizeLocally(const TwoViewData& data, EstimatorComponents& c, const Mode
     const Score score = c.scorer->score(data, refit);
     if (score.isCandidate)
         candidates.add(refit, score);
+}
+
+/* The most supported hypothesis of a run without candidates, as the method would have returned
+it without its acceptance tests: refitted on its inliers and, with K, given its motion. Only a
+diagnostic (Report::rejectedF...): a minimal sample's raw hypothesis would be judged far worse
+than what the data support. */
+Model polishRejected(const TwoViewData& data, EstimatorComponents& c, Model model)
+{
+    constexpr int kFitIterations = 20;
+    std::vector<uchar> mask;
+    c.scorer->classify(data, model, mask);
+    if (data.calibrated && !model.hasMotion && !recoverMotion(data, mask, model))
+        return model;
+    std::vector<int> inliers;
+    for (size_t i = 0; i < mask.size(); ++i)
+        if (mask[i])
+            inliers.push_back(static_cast<int>(i));
+    Model fitted = model;
+    if (fitModelOn(data, inliers, kFitIterations, fitted))
+        model = fitted;
+    if (data.calibrated)
+        recoverMotion(data, mask, model);
+    return model;
 }
 
 // With Params::isParallel, hypotheses are evaluated in batches of this many iterations. The size
@@ -239,6 +265,10 @@ private:
             Score& score = slot.scores[h];
             c_.scorer->commit(score);
             const Model& model = slot.models[h];
+            if (score.inlierCount > result.mostSupportedInliers) {
+                result.mostSupportedInliers = score.inlierCount;
+                result.mostSupported = model;
+            }
             if (!score.isCandidate || !candidates.add(model, score))
                 continue;
             if (c_.localOptimizer)
@@ -275,6 +305,153 @@ private:
 
 } // namespace
 
+void rejectModel(RansacResult& result, Status status, const std::string& message,
+                 const Model& model)
+{
+    result.status = status;
+    result.message = message;
+    result.rejected = model;
+    result.hasRejected = true;
+    std::fill(result.mask.begin(), result.mask.end(), 0);
+}
+
+namespace {
+
+// Angle (degrees) between two rotations and between two unit directions.
+double rotationAngleDeg(const Eigen::Matrix3d& A, const Eigen::Matrix3d& B)
+{
+    const double c = std::max(-1.0, std::min(1.0, ((A * B.transpose()).trace() - 1.0) / 2.0));
+    return std::acos(c) * 180.0 / CV_PI;
+}
+
+double directionAngleDeg(const Eigen::Vector3d& a, const Eigen::Vector3d& b)
+{
+    return std::acos(std::max(-1.0, std::min(1.0, a.dot(b)))) * 180.0 / CV_PI;
+}
+
+// The planar motion's candidates are two motions when their rotations or translation directions
+// differ by more than this (the accuracy the benchmark asks of a right motion): closer ones are
+// one motion whose direction a plane determines loosely (refits from one basin measured up to
+// 7 deg apart), while the twin of a homography's decomposition is far off (t along the normal).
+constexpr double kDistinctRotationDeg = 5.0, kDistinctTranslationDeg = 15.0;
+// ORB-SLAM's ambiguity ratio (Mur-Artal et al. 2015, homography reconstruction): a second
+// motion with at least this share of the best one's support is not ruled out by cheirality.
+constexpr double kAmbiguousSupportRatio = 0.75;
+
+// Points within the threshold of the model's F (`within`); how many of them lie in front of both
+// cameras (support); and the truncated cost of MSAC with cheirality: a point's squared Sampson
+// distance, the squared threshold for a point outside the band or behind a camera.
+struct PlanarFit
+{
+    int support = -1;
+    double cost = std::numeric_limits<double>::infinity();
+};
+
+PlanarFit planarFit(const TwoViewData& data, const Model& model, std::vector<uchar>& within,
+                    std::vector<uchar>& inFront)
+{
+    const double thresholdSquared = data.threshold * data.threshold;
+    within.resize(data.points1.size());
+    for (size_t i = 0; i < within.size(); ++i)
+        within[i] =
+            sampsonDistanceSquared(model.F, data.points1[i], data.points2[i]) <= thresholdSquared;
+    PlanarFit fit;
+    fit.support = countPointsInFront(model.R, model.t, data.points1, data.points2, data.Kinv,
+                                     &within, &inFront);
+    fit.cost = 0.0;
+    for (size_t i = 0; i < within.size(); ++i)
+        fit.cost += inFront[i] ? sampsonDistanceSquared(model.F, data.points1[i], data.points2[i])
+                               : thresholdSquared;
+    return fit;
+}
+
+/* Each candidate motion is refitted on the points it explains itself, not on the selected
+model's inliers: on a plane the selected F is one of a family, and its inliers pull every
+candidate towards it. */
+void resolvePlanarMotion(const TwoViewData& data, EstimatorComponents& c, const Eigen::Matrix3d& H,
+                         RansacResult& result)
+{
+    constexpr int kFitIterations = 20, kRounds = 2;
+    std::vector<Model> motions = homographyMotions(data, H);
+    motions.insert(motions.begin(), result.model);
+    std::vector<PlanarFit> fits(motions.size());
+    std::vector<uchar> within, inFront;
+    std::vector<int> inliers;
+    size_t best = 0;
+    for (size_t m = 0; m < motions.size(); ++m) {
+        for (int round = 0; round < kRounds; ++round) {
+            planarFit(data, motions[m], within, inFront);
+            inliers.clear();
+            for (size_t i = 0; i < within.size(); ++i)
+                if (within[i])
+                    inliers.push_back(static_cast<int>(i));
+            Model fitted = motions[m];
+            if (fitModelOn(data, inliers, kFitIterations, fitted))
+                motions[m] = fitted;
+        }
+        fits[m] = planarFit(data, motions[m], within, inFront);
+        if (fits[m].cost < fits[best].cost)
+            best = m;
+    }
+    for (size_t m = 0; m < motions.size(); ++m) {
+        const bool distinct =
+            rotationAngleDeg(motions[m].R, motions[best].R) > kDistinctRotationDeg ||
+            directionAngleDeg(motions[m].t, motions[best].t) > kDistinctTranslationDeg;
+        if (distinct && fits[m].support >= kAmbiguousSupportRatio * fits[best].support) {
+            rejectModel(result, STATUS_DEGENERATE_CONFIGURATION,
+                        "a homography explains the inliers (planar scene) and two of its motions "
+                        "put them in front of both cameras: the motion is not determined",
+                        motions[best]);
+            return;
+        }
+    }
+    result.model = motions[best];
+    c.scorer->classify(data, result.model, result.mask);
+    result.score = c.scorer->score(data, result.model);
+    if (!result.score.isCandidate || fits[best].support <= 0)
+        rejectModel(result, STATUS_POOR_QUALITY_INPUT,
+                    "the motion of the planar scene fails the acceptance tests", result.model);
+}
+
+} // namespace
+
+void decideDegeneracy(const TwoViewData& data, EstimatorComponents& c, RansacResult& result)
+{
+    if (result.status != STATUS_SUCCESS)
+        return;
+    const HomographyComparison homography =
+        compareWithHomography(data, result.model.F, result.mask);
+    if (!homography.homographyExplainsInliers)
+        return;
+    if (!data.calibrated) {
+        rejectModel(result, STATUS_DEGENERATE_CONFIGURATION,
+                    "a homography explains the inliers as well as F (planar scene, pure rotation "
+                    "or too little parallax): F is not determined without the camera matrix",
+                    result.model);
+        return;
+    }
+    const RotationComparison rotation = compareWithRotation(data, result.model.F, result.mask);
+    if (rotation.rotationExplainsInliers) {
+        result.rejected = result.model;
+        result.hasRejected = true;
+        Model pure;
+        pure.hasMotion = true;
+        pure.R = rotation.R;
+        pure.t.setZero();
+        if (rotation.hasCovariance) {
+            pure.uncertaintyDof = 3;
+            pure.covariance.topLeftCorner<3, 3>() = rotation.covariance;
+        }
+        result.model = pure;
+        result.mask = rotation.inliers;
+        result.status = STATUS_PURE_ROTATION;
+        result.message = "a rotation about the camera centre explains the inliers as well as a "
+                         "motion: R is determined, the translation is not";
+        return;
+    }
+    resolvePlanarMotion(data, c, homography.H, result);
+}
+
 void searchHypotheses(const TwoViewData& data, EstimatorComponents& components,
                       CandidateSet& candidates, RansacResult& result)
 {
@@ -308,6 +485,10 @@ RansacResult runRansac(const TwoViewData& data, EstimatorComponents& c)
                 cv::format("no hypothesis passed the acceptance tests in %d iterations%s",
                            iteration, result.outOfTime ? " (Params.timeBudget ran out)" : "");
         }
+        if (result.mostSupportedInliers >= 0) {
+            result.rejected = polishRejected(data, c, result.mostSupported);
+            result.hasRejected = true;
+        }
         return result;
     }
     result.model = best->model;
@@ -320,9 +501,7 @@ RansacResult runRansac(const TwoViewData& data, EstimatorComponents& c)
         // cheirality, then refined in motion space. Refining F first matters: the F of a noisy
         // minimal sample is far from any essential matrix.
         if (!recoverMotion(data, result.mask, result.model)) {
-            result.status = STATUS_DEGENERATE_CONFIGURATION;
-            result.message = "no decomposition of E puts the inliers in front of both cameras";
-            std::fill(result.mask.begin(), result.mask.end(), 0);
+            rejectModel(result, STATUS_DEGENERATE_CONFIGURATION, kNoCheirality, result.model);
             return result;
         }
         // The motion's maximum-likelihood fit on the F's inliers comes before classifying
@@ -334,15 +513,13 @@ RansacResult runRansac(const TwoViewData& data, EstimatorComponents& c)
         refineSelected(data, c, result);
     }
     if (data.calibrated && !decideMotionOnInliers(data, c, result)) {
-        result.status = STATUS_DEGENERATE_CONFIGURATION;
-        result.message = "no decomposition of E puts the inliers in front of both cameras";
-        std::fill(result.mask.begin(), result.mask.end(), 0);
+        rejectModel(result, STATUS_DEGENERATE_CONFIGURATION, kNoCheirality, result.model);
         return result;
     }
     if (!result.score.isCandidate) {
-        result.status = STATUS_POOR_QUALITY_INPUT;
-        result.message = "the motion closest to the selected hypothesis fails the acceptance tests";
-        std::fill(result.mask.begin(), result.mask.end(), 0);
+        rejectModel(result, STATUS_POOR_QUALITY_INPUT,
+                    "the motion closest to the selected hypothesis fails the acceptance tests",
+                    result.model);
         return result;
     }
     if (c.refiner) {

@@ -58,8 +58,8 @@ enum MinimalSolverKind
 
 /** @brief Outcome of an estimation. Every estimating function reports one.
 
-Only #STATUS_SUCCESS comes with a model; with any other status the returned matrices are empty
-and the mask is all zeros.
+Only #STATUS_SUCCESS comes with a model, and #STATUS_PURE_ROTATION with a rotation; with any
+other status the returned matrices are empty and the mask is all zeros.
 */
 enum Status
 #ifndef OPENCV_BINDING_PARSER // OpenCV 4.6's binding generator cannot read an enum base
@@ -72,9 +72,16 @@ enum Status
     poor to trust any motion from it (the paper's PQI). */
     STATUS_POOR_QUALITY_INPUT = 1,
     STATUS_NOT_ENOUGH_POINTS = 2, //!< fewer valid correspondences than the minimal solver needs
-    /** every sample, or the selected model, was degenerate: points identical or collinear, a
-    pure rotation, a motion that cheirality cannot resolve */
-    STATUS_DEGENERATE_CONFIGURATION = 3
+    /** every sample, or the selected model, was degenerate: points identical or collinear; a
+    planar scene or a pure rotation without a camera matrix (F is then not determined); with
+    one, a planar scene whose two motions cheirality cannot tell apart, or a motion that
+    cheirality cannot resolve. A planar scene with a camera matrix is otherwise a success. */
+    STATUS_DEGENERATE_CONFIGURATION = 3,
+    /** with a camera matrix, a rotation about the camera centre explains the inliers as well as
+    a motion (Torr's GRIC): R is returned, t is zero (not determined), E and F are empty, and the
+    covariance is the 3x3 one of the rotation increment. The mask marks the points the rotation
+    explains. */
+    STATUS_PURE_ROTATION = 4
 };
 
 /** @brief Parameters of the robust estimators, shaped like cv::UsacParams.
@@ -155,9 +162,12 @@ struct CV_EXPORTS_W_SIMPLE Params
     a candidate too. Off by default, as in the paper. */
     CV_PROP_RW bool localOptimization;
     /** After the loop, compare the final inliers' fit by F with their fit by a homography
-    (Torr's GRIC @cite Torr1998GRIC): when the homography explains them at least as well (a planar
-    scene, a rotation without translation, too little parallax), F and the motion are not determined
-    and the status is #STATUS_DEGENERATE_CONFIGURATION. Default true. */
+    (Torr's GRIC @cite Torr1998GRIC). When the homography explains them at least as well (a planar
+    scene, a rotation without translation, too little parallax): without a camera matrix F is not
+    determined and the status is #STATUS_DEGENERATE_CONFIGURATION; with one, a rotation that
+    explains them as well as a motion gives #STATUS_PURE_ROTATION, and otherwise the motion of
+    the plane is taken from E or from the homography's decomposition, whichever puts the most
+    inliers in front of both cameras (degenerate when two motions do). Default true. */
     CV_PROP_RW bool degeneracyTest;
     /** For #SAMPLER_PROSAC: one score per correspondence, higher is better (e.g. the negated
     ratio of the two best descriptor distances), CV_32F or CV_64F. Empty (default): the points
@@ -179,7 +189,8 @@ struct CV_EXPORTS_W_SIMPLE Params
 
 /** @brief Everything an estimation produced, for callers who want more than the model.
 
-Matrices are CV_64F; all but mask are empty unless status is #STATUS_SUCCESS.
+Matrices are CV_64F; all but mask and the rejected* diagnostics are empty unless status is
+#STATUS_SUCCESS.
 */
 struct CV_EXPORTS_W_SIMPLE Report
 {
@@ -209,7 +220,8 @@ struct CV_EXPORTS_W_SIMPLE Report
     sigma the noise chosen by Params::useEstimatedNoise, c the inlier threshold and h(k) =
     E[z^2 | |z| < k] (the fit sees only residuals inside the band; 1 / h = 1.32 at 1.96 sigma).
     Its calibration is measured in doc/results.md. poseCovariance converts it to a 6x6 (rotation,
-    translation) covariance. */
+    translation) covariance. With #STATUS_PURE_ROTATION, 3x3: the rotation increment's alone
+    (R exp([omega]x)), since t is not determined. */
     CV_PROP_RW Mat covariance;
     /** Noise estimated from the residuals of the final inliers, pixels per coordinate: the
     Sampson residuals' sum of squares over (inliers - model DoF), corrected for the truncation by
@@ -223,6 +235,16 @@ struct CV_EXPORTS_W_SIMPLE Report
     direction, degrees (the larger semi-axis of its 1-sigma cone); NaN without covariance. */
     CV_PROP_RW double translationStdDeg;
     CV_PROP_RW double timeSeconds; //!< wall time of the call
+    /** Rejected, for diagnostics: when the status is not #STATUS_SUCCESS, the 3x3 F (pixels,
+    ||F|| = 1) the method would have returned without the test that failed: the selected model
+    when a later test (degeneracy, cheirality, acceptance after refinement) rejected it, else the
+    hypothesis with the most inliers, refitted on them. Empty on success, with too few points or
+    when no hypothesis was scored. Never a result: the status says it is not to be trusted. */
+    CV_PROP_RW Mat rejectedF;
+    //! Rejected, for diagnostics: the 3x3 rotation of rejectedF's motion (with a camera matrix)
+    CV_PROP_RW Mat rejectedR;
+    //! Rejected, for diagnostics: the 3x1 unit translation of rejectedF's motion (with K)
+    CV_PROP_RW Mat rejectedT;
 };
 
 /** @brief A short English name of a #Status value, e.g. "poor quality input".

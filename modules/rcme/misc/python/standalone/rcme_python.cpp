@@ -675,6 +675,7 @@ PYBIND11_MODULE(_rcme, m)
     m.attr("STATUS_POOR_QUALITY_INPUT") = static_cast<int>(STATUS_POOR_QUALITY_INPUT);
     m.attr("STATUS_NOT_ENOUGH_POINTS") = static_cast<int>(STATUS_NOT_ENOUGH_POINTS);
     m.attr("STATUS_DEGENERATE_CONFIGURATION") = static_cast<int>(STATUS_DEGENERATE_CONFIGURATION);
+    m.attr("STATUS_PURE_ROTATION") = static_cast<int>(STATUS_PURE_ROTATION);
     m.attr("SCENE_CORRIDOR") = static_cast<int>(SCENE_CORRIDOR);
     m.attr("SCENE_GENERIC") = static_cast<int>(SCENE_GENERIC);
 
@@ -749,7 +750,12 @@ PYBIND11_MODULE(_rcme, m)
              "3x1 rotation std about camera 1's x, y, z (degrees) or None")
         .plain("translationStdDeg", &Report::translationStdDeg,
                "translation direction's largest angular std (degrees), or NaN")
-        .plain("timeSeconds", &Report::timeSeconds);
+        .plain("timeSeconds", &Report::timeSeconds)
+        .mat("rejectedF", &Report::rejectedF,
+             "rejected, for diagnostics: 3x3 F the failed estimation rejected, or None")
+        .mat("rejectedR", &Report::rejectedR, "rejected, for diagnostics: its rotation or None")
+        .mat("rejectedT", &Report::rejectedT,
+             "rejected, for diagnostics: its unit translation or None");
     reportFields.addRepr("Report");
     reportFields.addPickle();
 
