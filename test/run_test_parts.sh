@@ -53,6 +53,8 @@ part "Debian packages (make deps)" "$make_cmd" --no-print-directory deps
 part "configure + Release build ($build_dir)" "$make_cmd" --no-print-directory build \
     BUILD_DIR="$build_dir" JOBS="$jobs"
 part "ctest, Release" bash -c "cd '$build_dir' && ctest --output-on-failure -j'$jobs'"
+part "pip install . in a venv, Python tests" env JOBS="$jobs" BUILD_DIR="$build_dir" \
+    test/python_pip/run_pip_test.sh
 part "ASan + UBSan build and C++ tests" env JOBS="$jobs" test/hardening/run_sanitizers.sh
 part "TSan build and concurrency tests" env JOBS="$jobs" test/hardening/run_sanitizers.sh --tsan
 part "fuzzing ($fuzz_seconds s)" env JOBS="$jobs" test/hardening/run_fuzzer.sh "$fuzz_seconds"
