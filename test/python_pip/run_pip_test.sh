@@ -9,7 +9,8 @@
 # repository, pytest on modules/rcme/misc/python/test (RCME_TEST_REQUIRE=standalone: a package
 # that does not import fails instead of skipping) and README.md's Python example; then pip's
 # opencv-python-headless in the same venv and test_cv2_coexistence.py (cv2 and rcme in one
-# process, arrays passed between them; COEXIST=0 skips it). The venv is made anew on every run
+# process, arrays passed between them; COEXIST=0 skips it), after mypy on typed_use.py with
+# the installed type stub (TYPECHECK=0 skips it). The venv is made anew on every run
 # (BUILD_DIR/pip_test/venv, default BUILD_DIR=build); pip's download cache and the wheel's
 # CMake build folder (BUILD_DIR-pip, beside BUILD_DIR so that ccache reuses the objects of the
 # main build) are kept between runs.
@@ -48,6 +49,22 @@ RCME_TEST_REQUIRE=standalone PYTHONDONTWRITEBYTECODE=1 \
 "$venv/bin/python" "$repo/test/python_pip/run_readme_example.py" "$repo/README.md"
 tested=$(date +%s)
 echo "run_pip_test: venv + install $((installed - start)) s, tests $((tested - installed)) s"
+
+# The type stub as an editor's checker reads it (TYPECHECK=0 skips: it downloads mypy).
+if [ "${TYPECHECK:-1}" != 0 ]; then
+  "$venv/bin/python" -m pip install --quiet mypy
+  set +e
+  out=$("$venv/bin/python" -m mypy --no-incremental "$repo/test/python_pip/typed_use.py" 2>&1)
+  set -e
+  echo "$out"
+  if ! grep -q 'typed_use.py:16: error: "Params" has no attribute "sigmaa"' <<<"$out" ||
+     ! grep -q "Found 1 error" <<<"$out"; then
+    echo "run_pip_test: mypy with the stub did not give exactly the expected error" >&2
+    exit 1
+  fi
+  echo "run_pip_test: mypy on the stub $(($(date +%s) - tested)) s"
+  tested=$(date +%s)
+fi
 
 # pip's cv2 in the same process (COEXIST=0 skips: it downloads opencv-python-headless).
 if [ "${COEXIST:-1}" != 0 ]; then

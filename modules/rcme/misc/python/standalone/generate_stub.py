@@ -27,7 +27,8 @@ ARGUMENT_TYPES = {
     "ransacReprojThreshold": "float", "confidence": "float", "maxIters": "int", "prob": "float",
     "threshold": "float", "focal": "float", "pp": "tuple[float, float]", "threads": "int",
     "cameraMatrix": "ArrayLike | None",
-    "pairs": "Iterable[tuple[ArrayLike, ArrayLike]]",
+    "pairs": "Iterable[tuple[ArrayLike | None, ArrayLike | None]]",
+    "generateScene.params": "SceneParams",
     "estimateRelativeMotionBatch.cameraMatrix": "ArrayLike | Sequence[ArrayLike | None] | None",
 }
 # Names of results that are not arrays (retval is typed per function below).
@@ -87,8 +88,8 @@ def result_type(function_name, results):
 
 def argument_type(function_name, name, optional):
     t = ARGUMENT_TYPES.get(function_name + "." + name, ARGUMENT_TYPES.get(name))
-    if t is None:  # an array: inputs take anything array-like, optional outputs may be None
-        return ARRAY_IN + " | None" if optional else ARRAY_IN
+    if t is None:  # an array: anything array-like, or None (an empty array, as in cv2)
+        return ARRAY_IN + " | None"
     return t
 
 
