@@ -41,6 +41,9 @@ const double kGenericBaselineJitter = 0.3;
 const double kGenericMaxTiltDeg = 6.0;
 // Generic scene: camera 2 is redrawn while its rotation from camera 1 is smaller than this.
 const double kGenericMinRotationDeg = 3.0;
+// Plane scene: the plane n . X = d in camera 1's frame.
+const Eigen::Vector3d kPlaneNormal = Eigen::Vector3d(0.1, -0.2, 1.0).normalized();
+const double kPlaneDistance = 12.0;
 // A point closer than this to a camera plane is treated as not in front of the camera.
 const double kMinPointDepth = 1e-9;
 // Attempts at placing the corridor camera centres before giving up.
@@ -78,9 +81,11 @@ void requirePositiveFinite(double value, const char* field)
 
 void validate(const SceneParams& p)
 {
-    if (p.kind != SCENE_CORRIDOR && p.kind != SCENE_GENERIC)
+    if (p.kind != SCENE_CORRIDOR && p.kind != SCENE_GENERIC && p.kind != SCENE_PLANE &&
+        p.kind != SCENE_PURE_ROTATION)
         CV_Error(Error::StsBadArg,
-                 format("SceneParams.kind must be SCENE_CORRIDOR or SCENE_GENERIC (got %d)",
+                 format("SceneParams.kind must be SCENE_CORRIDOR, SCENE_GENERIC, SCENE_PLANE or "
+                        "SCENE_PURE_ROTATION (got %d)",
                         static_cast<int>(p.kind)));
     if (p.numPoints < 1 || p.numPoints > kMaxNumPoints)
         CV_Error(Error::StsBadArg, format("SceneParams.numPoints must be in [1, %d] (got %d)",
@@ -105,12 +110,26 @@ void validate(const SceneParams& p)
     requirePositiveFinite(p.corridorHeight, "corridorHeight");
 }
 
+const char* kindName(SceneKind kind)
+{
+    switch (kind) {
+    case SCENE_CORRIDOR:
+        return "SCENE_CORRIDOR";
+    case SCENE_GENERIC:
+        return "SCENE_GENERIC";
+    case SCENE_PLANE:
+        return "SCENE_PLANE";
+    case SCENE_PURE_ROTATION:
+        return "SCENE_PURE_ROTATION";
+    }
+    return "?";
+}
+
 std::string describe(const SceneParams& p)
 {
     return format("kind=%s, corridor %gx%gx%g m (WxHxD), baseline=%g m, f=%g px, image %dx%d",
-                  p.kind == SCENE_CORRIDOR ? "SCENE_CORRIDOR" : "SCENE_GENERIC", p.corridorWidth,
-                  p.corridorHeight, p.corridorDepth, p.baseline, p.focalLength, p.imageWidth,
-                  p.imageHeight);
+                  kindName(p.kind), p.corridorWidth, p.corridorHeight, p.corridorDepth, p.baseline,
+                  p.focalLength, p.imageWidth, p.imageHeight);
 }
 
 // Camera-to-world rotation of a camera looking along +Z, turned by random yaw (about Y), pitch
@@ -273,7 +292,10 @@ struct ScenePoints
         const double u = rng.uniform(0.0, static_cast<double>(K.width));
         const double v = rng.uniform(0.0, static_cast<double>(K.height));
         const double z = rng.uniform(kGenericMinDepth, kGenericMaxDepth);
-        return Vector3d((u - K.cx) / K.f * z, (v - K.cy) / K.f * z, z);
+        const Vector3d ray((u - K.cx) / K.f, (v - K.cy) / K.f, 1.0);
+        if (kind == SCENE_PLANE) // the same ray, to the plane
+            return ray * (kPlaneDistance / kPlaneNormal.dot(ray));
+        return ray * z;
     }
 };
 
@@ -326,6 +348,15 @@ SyntheticScene generateScene(const SceneParams& params)
             placeCorridorCameras(params, rng, cam1, cam2);
         else
             placeGenericCameras(params, rng, cam1, cam2);
+        if (params.kind == SCENE_PURE_ROTATION) {
+            // Camera 2 at camera 1's centre, rotated by 3-6 deg: no translation at all.
+            cam2.C = cam1.C;
+            for (int attempt = 0; attempt < 100; ++attempt) {
+                cam2.Rw = randomTilt(rng, kGenericMaxTiltDeg).transpose();
+                if (0.5 * (cam2.Rw.trace() - 1.0) <= std::cos(kGenericMinRotationDeg * kDegToRad))
+                    break;
+            }
+        }
         overlapping = sharedViewFraction(scenePoints, cam1, cam2, rng) >= kMinSharedViewFraction;
     }
     if (!overlapping)
@@ -407,7 +438,10 @@ SyntheticScene generateScene(const SceneParams& params)
 
     // x2 = R x1 + t with x_i = Rw_i (X - C_i): R = Rw2 Rw1^T, t = Rw2 (C1 - C2), |t| = baseline.
     const Matrix3d R = cam2.Rw * cam1.Rw.transpose();
-    const Vector3d t = (cam2.Rw * (cam1.C - cam2.C)).normalized();
+    // A pure rotation has no translation: t, E and F are zero.
+    const Vector3d t = params.kind == SCENE_PURE_ROTATION
+                           ? Vector3d::Zero()
+                           : Vector3d((cam2.Rw * (cam1.C - cam2.C)).normalized());
     Matrix3d tx;
     tx << 0.0, -t.z(), t.y(), t.z(), 0.0, -t.x(), -t.y(), t.x(), 0.0;
     const Matrix3d E = tx * R;
@@ -416,7 +450,8 @@ SyntheticScene generateScene(const SceneParams& params)
     Kmat << K.f, 0.0, K.cx, 0.0, K.f, K.cy, 0.0, 0.0, 1.0;
     const Matrix3d Kinv = Kmat.inverse();
     Matrix3d F = Kinv.transpose() * E * Kinv;
-    F /= F.norm();
+    if (F.norm() > 0)
+        F /= F.norm();
     // F is defined up to sign: make the entry of largest magnitude (first in row-major order on
     // ties) positive so that the ground truth is unique.
     int bestR = 0, bestC = 0;

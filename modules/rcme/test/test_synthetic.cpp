@@ -507,7 +507,7 @@ TEST(Rcme_Synthetic, bad_parameters_throw_naming_the_field)
     };
     const double nan = std::numeric_limits<double>::quiet_NaN();
     const double inf = std::numeric_limits<double>::infinity();
-    run([](SceneParams& p) { p.kind = static_cast<SceneKind>(2); }, "kind");
+    run([](SceneParams& p) { p.kind = static_cast<SceneKind>(4); }, "kind");
     run([](SceneParams& p) { p.kind = static_cast<SceneKind>(-1); }, "kind");
     run([](SceneParams& p) { p.numPoints = 0; }, "numPoints");
     run([](SceneParams& p) { p.numPoints = -5; }, "numPoints");

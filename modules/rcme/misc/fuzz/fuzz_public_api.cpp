@@ -465,8 +465,8 @@ void callSceneAndMotion(const FuzzCase& c, const Outputs& out)
     if (c.calls & rcme_fuzz::CALL_GENERATE_SCENE)
         guarded([&] {
             SceneParams sp;
-            sp.kind = static_cast<SceneKind>(c.sceneKind % 3);
-            sp.numPoints = c.sceneNumPoints % 128; // keeps an execution fast
+            sp.kind = static_cast<SceneKind>(c.sceneKind % 5); // 4: an invalid kind
+            sp.numPoints = c.sceneNumPoints % 128;              // keeps an execution fast
             sp.inlierRatio = c.sceneInlierRatio;
             sp.sigma = c.sceneSigma;
             sp.seed = c.seed;

@@ -22,7 +22,13 @@ enum SceneKind
     free-flying cameras inside it; hard for inlier counting because the walls are planes */
     SCENE_CORRIDOR = 0,
     //! a well-conditioned scene: points spread in depth in front of both cameras, wide baseline
-    SCENE_GENERIC = 1
+    SCENE_GENERIC = 1,
+    /** the generic scene's cameras looking at a plane (normal (0.1, -0.2, 1) in camera 1,
+    12 m away): without the camera matrix F is not determined, with it the motion is */
+    SCENE_PLANE = 2,
+    /** the generic scene's points seen by a camera that only rotates (3-6 deg): R is
+    determined, t is not; the ground truth t, F and E are zero */
+    SCENE_PURE_ROTATION = 3
 };
 
 //! Parameters of the synthetic scene generator. Lengths in metres, image sizes in pixels.
@@ -54,9 +60,9 @@ struct CV_EXPORTS_W_SIMPLE SyntheticScene
     CV_PROP_RW Mat inlierMask;   //!< Nx1 CV_8U, 1 for a true (noisy) correspondence
     CV_PROP_RW Mat cameraMatrix; //!< 3x3 CV_64F, shared by both views
     CV_PROP_RW Mat R;            //!< 3x3 true rotation, x2 = R x1 + t
-    CV_PROP_RW Mat t;            //!< 3x1 true unit translation direction
-    CV_PROP_RW Mat F;            //!< 3x3 true fundamental matrix, ||F|| = 1
-    CV_PROP_RW Mat E;            //!< 3x3 true essential matrix [t]x R
+    CV_PROP_RW Mat t; //!< 3x1 true unit translation direction (zero: #SCENE_PURE_ROTATION)
+    CV_PROP_RW Mat F; //!< 3x3 true fundamental matrix, ||F|| = 1 (zero: #SCENE_PURE_ROTATION)
+    CV_PROP_RW Mat E; //!< 3x3 true essential matrix [t]x R (zero: #SCENE_PURE_ROTATION)
 };
 
 /** @brief Generates a scene deterministically from its parameters.

@@ -678,6 +678,8 @@ PYBIND11_MODULE(_rcme, m)
     m.attr("STATUS_PURE_ROTATION") = static_cast<int>(STATUS_PURE_ROTATION);
     m.attr("SCENE_CORRIDOR") = static_cast<int>(SCENE_CORRIDOR);
     m.attr("SCENE_GENERIC") = static_cast<int>(SCENE_GENERIC);
+    m.attr("SCENE_PLANE") = static_cast<int>(SCENE_PLANE);
+    m.attr("SCENE_PURE_ROTATION") = static_cast<int>(SCENE_PURE_ROTATION);
 
     // --- Params
     py::class_<Params> params(m, "Params",

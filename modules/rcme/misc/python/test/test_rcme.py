@@ -159,7 +159,7 @@ class _RcmeSuite:
             "SOLVER_EIGHT_POINT": 0, "SOLVER_SEVEN_POINT": 1, "SOLVER_FIVE_POINT": 2,
             "STATUS_SUCCESS": 0, "STATUS_POOR_QUALITY_INPUT": 1, "STATUS_NOT_ENOUGH_POINTS": 2,
             "STATUS_DEGENERATE_CONFIGURATION": 3, "STATUS_PURE_ROTATION": 4,
-            "SCENE_CORRIDOR": 0, "SCENE_GENERIC": 1,
+            "SCENE_CORRIDOR": 0, "SCENE_GENERIC": 1, "SCENE_PLANE": 2, "SCENE_PURE_ROTATION": 3,
         }
         for name, value in expected.items():
             self.assertIs(type(getattr(b, name)), int, name)
