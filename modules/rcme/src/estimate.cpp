@@ -78,6 +78,7 @@ Estimation estimate(InputArray points1, InputArray points2, InputArray cameraMat
     detail::RansacResult result = detail::runRansac(data, components);
     if (params.degeneracyTest)
         detail::decideDegeneracy(data, components, result);
+    detail::finalizeModel(data, components, result);
 
     Estimation out;
     Report& report = out.report;

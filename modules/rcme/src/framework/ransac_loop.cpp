@@ -522,17 +522,21 @@ RansacResult runRansac(const TwoViewData& data, EstimatorComponents& c)
                     result.model);
         return result;
     }
-    if (c.refiner) {
-        c.refiner->finalize(data, result.mask, result.model);
-        // The final fit moves the model a little: the inliers are the points it used that the
-        // final model still holds.
-        std::vector<uchar> held;
-        c.scorer->classify(data, result.model, held);
-        for (size_t i = 0; i < held.size(); ++i)
-            result.mask[i] = result.mask[i] && held[i];
-    }
     result.status = STATUS_SUCCESS;
     return result;
+}
+
+void finalizeModel(const TwoViewData& data, EstimatorComponents& c, RansacResult& result)
+{
+    if (result.status != STATUS_SUCCESS || !c.refiner)
+        return;
+    c.refiner->finalize(data, result.mask, result.model);
+    // The final fit moves the model a little: the inliers are the points it used that the
+    // final model still holds.
+    std::vector<uchar> held;
+    c.scorer->classify(data, result.model, held);
+    for (size_t i = 0; i < held.size(); ++i)
+        result.mask[i] = result.mask[i] && held[i];
 }
 
 } // namespace detail

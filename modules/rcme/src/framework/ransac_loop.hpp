@@ -61,6 +61,12 @@ outcome is result.rejected. */
 void decideDegeneracy(const TwoViewData& data, EstimatorComponents& components,
                       RansacResult& result);
 
+/** The final fit of a successful run's model and its covariance (Refiner::finalize), after the
+decision on what the inliers determine (decideDegeneracy): the model it fits is the one that is
+returned. The mask becomes the points of that fit that the fitted model still holds. */
+void finalizeModel(const TwoViewData& data, EstimatorComponents& components,
+                   RansacResult& result);
+
 class CandidateSet;
 
 /** runRansac's hypothesis loop alone (on several threads when components.parallel): adds the
