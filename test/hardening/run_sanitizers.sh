@@ -36,9 +36,8 @@ if [ "$mode" = address ]; then
     export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1${UBSAN_OPTIONS:+:$UBSAN_OPTIONS}"
     test_filter=()
     configure_address_build
-    # Everything but the fuzz targets, which run_fuzzer.sh builds.
-    nice cmake --build "$build_dir" -j"$jobs" --target opencv_test_rcme rcme_two_view_demo \
-        rcme_mono_vo
+    # Every target, the fuzz targets of run_fuzzer.sh among them (the library is shared).
+    nice cmake --build "$build_dir" -j"$jobs"
 else
     build_dir=${SANITIZE_BUILD_DIR:-build-tsan}
     export TSAN_OPTIONS="halt_on_error=1:second_deadlock_stack=1${TSAN_OPTIONS:+:$TSAN_OPTIONS}"
