@@ -353,11 +353,11 @@ Mat findEssentialMat(InputArray points1, InputArray points2, double focal, Point
                                   threshold, kDefaultMaxIters, mask);
 }
 
-Mat findEssentialMat(InputArray points1, InputArray points2, InputArray cameraMatrix1,
-                     InputArray distCoeffs1, InputArray cameraMatrix2, InputArray distCoeffs2,
-                     int method, double prob, double threshold, OutputArray mask)
+// E of two cameras: the points undistorted onto their mean camera, as OpenCV does.
+static Mat essentialOfTwoCameras(InputArray points1, InputArray points2, InputArray cameraMatrix1,
+                                 InputArray distCoeffs1, InputArray cameraMatrix2,
+                                 InputArray distCoeffs2, const Params& params, OutputArray mask)
 {
-    const Params params = essentialParams(method, prob, threshold, kDefaultMaxIters);
     Mat u1, u2;
     const Mat K0 = undistortToMeanCamera(points1, points2, cameraMatrix1, distCoeffs1,
                                          cameraMatrix2, distCoeffs2, u1, u2);
@@ -366,16 +366,22 @@ Mat findEssentialMat(InputArray points1, InputArray points2, InputArray cameraMa
 }
 
 Mat findEssentialMat(InputArray points1, InputArray points2, InputArray cameraMatrix1,
+                     InputArray distCoeffs1, InputArray cameraMatrix2, InputArray distCoeffs2,
+                     int method, double prob, double threshold, OutputArray mask)
+{
+    return essentialOfTwoCameras(points1, points2, cameraMatrix1, distCoeffs1, cameraMatrix2,
+                                 distCoeffs2,
+                                 essentialParams(method, prob, threshold, kDefaultMaxIters), mask);
+}
+
+Mat findEssentialMat(InputArray points1, InputArray points2, InputArray cameraMatrix1,
                      InputArray cameraMatrix2, InputArray dist_coeff1, InputArray dist_coeff2,
                      OutputArray mask, const UsacParams& params)
 {
     Params p = usacParams(params);
     p.solver = SOLVER_FIVE_POINT;
-    Mat u1, u2;
-    const Mat K0 = undistortToMeanCamera(points1, points2, cameraMatrix1, dist_coeff1,
-                                         cameraMatrix2, dist_coeff2, u1, u2);
-    Status status;
-    return rcme::findEssentialMat(u1, u2, K0, p, mask, status);
+    return essentialOfTwoCameras(points1, points2, cameraMatrix1, dist_coeff1, cameraMatrix2,
+                                 dist_coeff2, p, mask);
 }
 
 int recoverPose(InputArray points1, InputArray points2, InputArray cameraMatrix1,
