@@ -30,8 +30,17 @@ print_table() {
         "$(((SECONDS - total_start) / 60))" "$(((SECONDS - total_start) % 60))"
 }
 
-# part NAME COMMAND...: runs the command, records its wall time; stops the suite on failure.
+# part [--required] NAME COMMAND...: runs the command and records its wall time. A failed part
+# does not stop the suite (every later part still runs and is timed, so one CI log shows every
+# failure and the whole budget), unless it is --required (the packages and the Release build,
+# which the later parts need); make test then exits with the first failure's status.
+first_failure=0
 part() {
+    local required=0
+    if [ "$1" = --required ]; then
+        required=1
+        shift
+    fi
     local name=$1
     shift
     printf '\n==== make test: %s\n' "$name"
@@ -41,16 +50,19 @@ part() {
     times+=("$((SECONDS - start))")
     if [ "$status" -eq 0 ]; then
         results+=("ok")
-    else
-        results+=("FAILED (exit $status)")
+        return
+    fi
+    results+=("FAILED (exit $status)")
+    echo "make test: '$name' failed" >&2
+    [ "$first_failure" -ne 0 ] || first_failure=$status
+    if [ "$required" -eq 1 ]; then
         print_table
-        echo "make test: '$name' failed" >&2
         exit "$status"
     fi
 }
 
-part "Debian packages (make deps)" "$make_cmd" --no-print-directory deps
-part "configure + Release build ($build_dir)" "$make_cmd" --no-print-directory build \
+part --required "Debian packages (make deps)" "$make_cmd" --no-print-directory deps
+part --required "configure + Release build ($build_dir)" "$make_cmd" --no-print-directory build \
     BUILD_DIR="$build_dir" JOBS="$jobs"
 part "ctest, Release" bash -c "cd '$build_dir' && ctest --output-on-failure -j'$jobs'"
 part "pip install . in a venv, Python tests" env JOBS="$jobs" BUILD_DIR="$build_dir" \
@@ -63,3 +75,11 @@ if [ "$intree" != 0 ]; then
         --jobs "$jobs"
 fi
 print_table
+if [ "$first_failure" -ne 0 ]; then
+    failed=()
+    for i in "${!names[@]}"; do
+        [ "${results[$i]}" = ok ] || failed+=("'${names[$i]}'")
+    done
+    echo "make test: failed: ${failed[*]}" >&2
+    exit "$first_failure"
+fi
