@@ -204,6 +204,21 @@ void writeStandingCamera(OutputArray R, OutputArray t)
     Mat(Mat::zeros(3, 1, CV_64F)).copyTo(t);
 }
 
+// findEssentialMat's answer in OpenCV's terms: E, or an empty E with a zero mask. (The status form
+// keeps a pure rotation's inliers beside its empty E; here no E means no inliers.)
+Mat essentialOrNothing(InputArray points1, InputArray points2, InputArray cameraMatrix,
+                       const Params& params, OutputArray mask)
+{
+    Status status;
+    Mat inliers;
+    Mat E = rcme::findEssentialMat(points1, points2, cameraMatrix, params, inliers, status);
+    if (E.empty())
+        inliers.setTo(0);
+    if (mask.needed())
+        inliers.copyTo(mask);
+    return E;
+}
+
 // The selection recoverPose's mask argument makes on input: all points when it is empty.
 std::vector<uchar> readSelection(InputOutputArray mask, size_t n)
 {
@@ -327,9 +342,8 @@ Mat findFundamentalMat(InputArray points1, InputArray points2, OutputArray mask,
 Mat findEssentialMat(InputArray points1, InputArray points2, InputArray cameraMatrix, int method,
                      double prob, double threshold, int maxIters, OutputArray mask)
 {
-    Status status;
-    return rcme::findEssentialMat(points1, points2, cameraMatrix,
-                                  essentialParams(method, prob, threshold, maxIters), mask, status);
+    return essentialOrNothing(points1, points2, cameraMatrix,
+                              essentialParams(method, prob, threshold, maxIters), mask);
 }
 
 Mat findEssentialMat(InputArray points1, InputArray points2, InputArray cameraMatrix, int method,
@@ -361,8 +375,7 @@ static Mat essentialOfTwoCameras(InputArray points1, InputArray points2, InputAr
     Mat u1, u2;
     const Mat K0 = undistortToMeanCamera(points1, points2, cameraMatrix1, distCoeffs1,
                                          cameraMatrix2, distCoeffs2, u1, u2);
-    Status status;
-    return rcme::findEssentialMat(u1, u2, K0, params, mask, status);
+    return essentialOrNothing(u1, u2, K0, params, mask);
 }
 
 Mat findEssentialMat(InputArray points1, InputArray points2, InputArray cameraMatrix1,
@@ -396,7 +409,9 @@ int recoverPose(InputArray points1, InputArray points2, InputArray cameraMatrix1
     Status status;
     Mat inliers;
     const int count = rcme::recoverPose(u1, u2, K0, E, R, t, params, inliers, status);
-    if (status != STATUS_SUCCESS)
+    // A pure rotation keeps its R (t = 0) and inliers: the right motion of a camera that turns
+    // on the spot, which OpenCV code can use as it is.
+    if (status != STATUS_SUCCESS && status != STATUS_PURE_ROTATION)
         writeStandingCamera(R, t);
     if (mask.needed())
         inliers.copyTo(mask);

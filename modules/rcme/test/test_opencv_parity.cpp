@@ -490,6 +490,39 @@ TEST(Rcme_OpenCVParity, recover_pose_of_an_empty_e_is_a_standing_camera)
     EXPECT_EQ(countNonZero(mask), 0);
 }
 
+// A pure rotation (with K) has no E: the E forms answer "nothing found" (empty E, zero mask, as
+// the README promises), and the two-camera recoverPose returns the rotation with t = 0 and its
+// inliers (a turn on the spot is a motion OpenCV code can use).
+TEST(Rcme_OpenCVParity, a_pure_rotation_has_no_e_and_recover_pose_keeps_its_rotation)
+{
+    const SyntheticScene s = testScene(SCENE_PURE_ROTATION, 1);
+    const int n = s.points1.rows;
+    const double kThreshold = 2.0; // the scene's noise is 1 px: the 95 % band
+    Mat mask;
+    EXPECT_TRUE(cv::rcme::findEssentialMat(s.points1, s.points2, s.cameraMatrix, RANSAC, 0.999,
+                                           kThreshold, mask)
+                    .empty());
+    ASSERT_EQ(mask.size(), Size(1, n));
+    EXPECT_EQ(countNonZero(mask), 0);
+    EXPECT_TRUE(cv::rcme::findEssentialMat(s.points1, s.points2, s.cameraMatrix, noArray(),
+                                           s.cameraMatrix, noArray(), RANSAC, 0.999, kThreshold,
+                                           mask)
+                    .empty());
+    EXPECT_EQ(countNonZero(mask), 0);
+
+    Mat E, R, t;
+    const int inliers =
+        cv::rcme::recoverPose(s.points1, s.points2, s.cameraMatrix, noArray(), s.cameraMatrix,
+                              noArray(), E, R, t, RANSAC, 0.999, kThreshold, mask);
+    EXPECT_GT(inliers, n / 3);
+    EXPECT_EQ(countNonZero(mask), inliers);
+    EXPECT_TRUE(E.empty());
+    const Mat unit = (Mat_<double>(3, 1) << 1, 0, 0);
+    EXPECT_LT(compareMotion(R, unit, s.R, unit).rotationDeg, 0.3);
+    ASSERT_EQ(t.size(), Size(1, 3));
+    EXPECT_EQ(countNonZero(t), 0);
+}
+
 TEST(Rcme_OpenCVParity, new_forms_agree_with_opencv_on_a_clean_pair)
 {
     const SyntheticScene s = genericTestScene(5, 1.0, 80);
