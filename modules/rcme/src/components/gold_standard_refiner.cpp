@@ -344,9 +344,41 @@ public:
         return fitModelOn(data, inliers_, maxIterations_, model);
     }
 
+    // The final covariance (setFinalUncertainty) is that of least squares on the points inside
+    // the band of the final estimate itself. The scorer's mask is the band of the model before
+    // the fit, so the band is taken again at each fit until it no longer changes.
     void finalize(const TwoViewData& data, std::vector<uchar>& mask, Model& model) override
     {
-        const std::vector<uchar>* selection = &mask;
+        constexpr int kMaxRounds = 4;
+        const double threshold2 = data.threshold * data.threshold;
+        selection_ = mask;
+        finalInliers_.clear();
+        for (int round = 0; round < kMaxRounds; ++round) {
+            if (!fitFinal(data, selection_, model))
+                break;
+            finalInliers_ = confirmed_;
+            band_.resize(data.points1.size());
+            const Eigen::Matrix3d F = model.F;
+            for (size_t i = 0; i < band_.size(); ++i)
+                band_[i] = sampsonDistanceSquared(F, data.points1[i], data.points2[i]) < threshold2;
+            if (band_ == selection_)
+                break;
+            selection_.swap(band_);
+        }
+        if (finalInliers_.empty())
+            return;
+        std::fill(mask.begin(), mask.end(), 0);
+        for (int i : finalInliers_)
+            mask[static_cast<size_t>(i)] = 1;
+    }
+
+private:
+    // One final fit on `selection`: the inliers in front of both cameras (calibrated), least
+    // squares, the unconfirmed inliers dropped (confirmed_), the final uncertainty. False (model
+    // unchanged) when the points do not determine the model.
+    bool fitFinal(const TwoViewData& data, const std::vector<uchar>& selection, Model& model)
+    {
+        const std::vector<uchar>* chosen = &selection;
         if (model.hasMotion) {
             // An inlier whose point triangulates behind a camera is no correspondence of this
             // motion but an outlier that fell into its band by chance. Such points lie near the
@@ -356,33 +388,31 @@ public:
             // When that would drop most inliers, their depths are not determined (rays nearly
             // parallel: a pure rotation) and cheirality says nothing about them.
             const int inFront =
-                countPointsInFront(model.R, model.t, data.points1, data.points2, data.Kinv, &mask,
-                                   &inFront_, std::numeric_limits<double>::infinity());
-            if (2 * inFront >= static_cast<int>(std::count(mask.begin(), mask.end(), 1)))
-                selection = &inFront_;
+                countPointsInFront(model.R, model.t, data.points1, data.points2, data.Kinv,
+                                   &selection, &inFront_, std::numeric_limits<double>::infinity());
+            if (2 * inFront >= static_cast<int>(std::count(selection.begin(), selection.end(), 1)))
+                chosen = &inFront_;
         }
-        collect(*selection);
+        collect(*chosen);
         Model fitted = model;
         if (!fitModel(data, inliers_, maxIterations_, Uncertainty::kFinalEstimate, fitted,
                       &confirmed_))
-            return;
+            return false;
         // Where the points do not determine the motion (a pure rotation leaves t free, when the
         // degeneracy test is off), the refit may turn t into the decomposition that puts the
         // points behind the cameras; then the motion stays and only its uncertainty is updated.
-        if (model.hasMotion && 2 * countPointsInFront(fitted.R, fitted.t, data.points1,
-                                                      data.points2, data.Kinv, &mask, nullptr) <
-                                   static_cast<int>(inliers_.size())) {
+        if (model.hasMotion &&
+            2 * countPointsInFront(fitted.R, fitted.t, data.points1, data.points2, data.Kinv,
+                                   &selection, nullptr) <
+                static_cast<int>(inliers_.size())) {
             fitted = model;
             if (!fitModel(data, inliers_, 0, Uncertainty::kFinalEstimate, fitted, &confirmed_))
-                return;
+                return false;
         }
         model = fitted;
-        std::fill(mask.begin(), mask.end(), 0);
-        for (int i : confirmed_)
-            mask[static_cast<size_t>(i)] = 1;
+        return true;
     }
 
-private:
     // Reused, and sized for every point at once: local optimisation refines inside the
     // hypothesis loop, which must not allocate.
     void collect(const std::vector<uchar>& mask)
@@ -394,8 +424,8 @@ private:
                 inliers_.push_back(static_cast<int>(i));
     }
 
-    std::vector<uchar> inFront_;
-    std::vector<int> confirmed_;
+    std::vector<uchar> selection_, band_, inFront_;
+    std::vector<int> confirmed_, finalInliers_;
     int maxIterations_;
     std::vector<int> inliers_;
 };

@@ -216,8 +216,10 @@ struct CV_EXPORTS_W_SIMPLE Report
     complement), only with a camera matrix; empty when refinement is off. R_true = R exp([omega]x)
     and t_true ~ t + B beta, where B's columns are b1 = normalize(t x e_k) (e_k the axis of t's
     smallest absolute component) and b2 = t x b1. It is the first-order covariance of the Gold
-    Standard fit on the inliers in front of both cameras that the others confirm (leverage <= 1/2,
-    studentized residual inside the band; the mask marks them): sigma^2 / h(c / sigma) (J^T J)^-1,
+    Standard fit on the points inside the band of that fit itself (the band is taken again after
+    each fit, up to four times, until it no longer changes), in front of both cameras, and
+    confirmed by the others (leverage <= 1/2, studentized residual inside the band; the mask marks
+    them): sigma^2 / h(c / sigma) (J^T J)^-1,
     with sigma the noise chosen by Params::useEstimatedNoise, c the inlier threshold and h(k) =
     E[z^2 | |z| < k] (the fit sees only residuals inside the band; 1 / h = 1.32 at 1.96 sigma).
     Its calibration is measured in doc/results.md. poseCovariance converts it to a 6x6 (rotation,
