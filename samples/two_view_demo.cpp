@@ -364,6 +364,8 @@ struct Estimate
     bool inliersPassCheirality = false; //!< the mask is recoverPose's
     double milliseconds = 0;
     double rotationErrorDeg = -1, translationErrorDeg = -1;
+    //! rcme with K: the covariance's standard deviations (rotation: norm of the per-axis ones)
+    double rotationStdDeg = -1, translationStdDeg = -1;
 };
 
 Estimate estimateWithRcme(const std::vector<cv::Point2f>& pts1,
@@ -405,7 +407,9 @@ Estimate estimateWithRcme(const std::vector<cv::Point2f>& pts1,
     if (covariance.rows == 5 && covariance.cols == 5) {
         // The report's figures for the same estimate (a second run: same seed, same result).
         const cv::rcme::Report report = cv::rcme::estimateRelativeMotion(pts1, pts2, K, params);
-        if (report.status == cv::rcme::STATUS_SUCCESS && !report.rotationStdDeg.empty())
+        if (report.status == cv::rcme::STATUS_SUCCESS && !report.rotationStdDeg.empty()) {
+            est.rotationStdDeg = cv::norm(report.rotationStdDeg);
+            est.translationStdDeg = report.translationStdDeg;
             std::cout << "noise estimated from the inliers: " << fixed(report.noiseSigma, 2)
                       << " px\n"
                       << "std of the rotation about camera 1's x, y, z (deg): "
@@ -414,6 +418,7 @@ Estimate estimateWithRcme(const std::vector<cv::Point2f>& pts1,
                       << fixed(report.rotationStdDeg.at<double>(2), 4)
                       << ", of the translation direction (deg, largest): "
                       << fixed(report.translationStdDeg, 4) << "\n";
+        }
     }
     return est;
 }
@@ -505,6 +510,9 @@ std::vector<std::string> bannerOf(const Estimate& est, size_t numMatches, double
         header.push_back("error vs ground truth: rotation " + fixed(est.rotationErrorDeg, 2) +
                          " deg, translation direction " + fixed(est.translationErrorDeg, 2) +
                          " deg");
+    if (est.rotationStdDeg >= 0)
+        header.push_back("predicted std (covariance): rotation " + fixed(est.rotationStdDeg, 3) +
+                         " deg, translation direction " + fixed(est.translationStdDeg, 3) + " deg");
     header.push_back("green: inliers, red: outliers (at most 150 lines each)" +
                      std::string(est.F.empty() ? "" : ", colours: epipolar lines of 8 inliers"));
     return header;
