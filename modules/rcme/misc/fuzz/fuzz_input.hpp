@@ -45,6 +45,16 @@ enum Call : uint32_t
     CALL_ALL = (1 << kNumCalls) - 1
 };
 
+//! OpenCV's forms without maxIters run 1000 iterations whenever no hypothesis passes (on any
+//! number of points): they took half of the fuzzer's time. They are called on fewer points than
+//! any minimal sample, so that they check and convert their arguments (undistortion included)
+//! and stop at "not enough points"; the estimation behind them is the one the forms with an
+//! iteration cap run on every input.
+constexpr size_t kMaxPointsWithoutIterationCap = 4;
+constexpr uint32_t kCallsWithoutIterationCap =
+    CALL_FUNDAMENTAL_DROP_IN_DEFAULT_ITERS | CALL_FUNDAMENTAL_MASK_FIRST |
+    CALL_ESSENTIAL_TWO_CAMERAS | CALL_RECOVER_POSE_TWO_CAMERAS;
+
 //! At most this many of the requested calls run per input (the lowest set bits), so that one
 //! execution stays cheap whatever the mutation does to the call bits.
 constexpr int kMaxCallsPerInput = 2;

@@ -280,6 +280,7 @@ void callEstimators(const FuzzCase& c, const PointInput& p1, const PointInput& p
         (c.flags & rcme_fuzz::FLAG_SECOND_VIEW_IS_FIRST) || c.coords1.size() == c.coords2.size();
     const int methodFlag = pickMethodFlag(c.method);
     const Point2d pp(c.cx, c.cy);
+    const bool small = static_cast<size_t>(n) <= rcme_fuzz::kMaxPointsWithoutIterationCap;
 
     if (c.calls & rcme_fuzz::CALL_ESTIMATE_RELATIVE_MOTION)
         guarded([&] {
@@ -311,8 +312,7 @@ void callEstimators(const FuzzCase& c, const PointInput& p1, const PointInput& p
                                          params.confidence, dropInIters, mask);
             checkMask(mask, n, false);
         });
-    // OpenCV's 6-argument form has no iteration cap (1000); run it on small inputs only.
-    if ((c.calls & rcme_fuzz::CALL_FUNDAMENTAL_DROP_IN_DEFAULT_ITERS) && n <= 20)
+    if ((c.calls & rcme_fuzz::CALL_FUNDAMENTAL_DROP_IN_DEFAULT_ITERS) && small)
         guarded([&] {
             Mat mask;
             cv::rcme::findFundamentalMat(p1.array(), p2.array(), methodFlag, params.threshold,
@@ -337,8 +337,6 @@ void callEstimators(const FuzzCase& c, const PointInput& p1, const PointInput& p
                                        params.confidence, params.threshold, dropInIters, mask);
             checkMask(mask, n, false);
         });
-    // The forms without maxIters run up to 1000 iterations: small inputs only.
-    const bool small = n <= 20;
     if ((c.calls & rcme_fuzz::CALL_FUNDAMENTAL_MASK_FIRST) && small)
         guarded([&] {
             Mat mask;
@@ -466,7 +464,7 @@ void callSceneAndMotion(const FuzzCase& c, const Outputs& out)
         guarded([&] {
             SceneParams sp;
             sp.kind = static_cast<SceneKind>(c.sceneKind % 5); // 4: an invalid kind
-            sp.numPoints = c.sceneNumPoints % 128;              // keeps an execution fast
+            sp.numPoints = c.sceneNumPoints % 128;             // keeps an execution fast
             sp.inlierRatio = c.sceneInlierRatio;
             sp.sigma = c.sceneSigma;
             sp.seed = c.seed;

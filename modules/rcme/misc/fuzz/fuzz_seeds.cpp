@@ -76,6 +76,18 @@ FuzzCase sceneCase(const cv::rcme::SceneParams& sp)
     return c;
 }
 
+// The seed with no more points than its calls are run on (the forms without maxIters).
+FuzzCase fitToCalls(FuzzCase c)
+{
+    if (!(c.calls & rcme_fuzz::kCallsWithoutIterationCap))
+        return c;
+    const size_t n = rcme_fuzz::kMaxPointsWithoutIterationCap;
+    c.numPoints1 = c.numPoints2 = static_cast<uint16_t>(n);
+    c.coords1.resize(2 * n);
+    c.coords2.resize(2 * n);
+    return c;
+}
+
 void write(const std::string& folder, const std::string& name, const FuzzCase& c)
 {
     rcme_fuzz::ByteWriter writer;
@@ -116,7 +128,8 @@ int main(int argc, char** argv)
             // One function per seed (each one at least once over the 24 seeds): an execution stays
             // short, and mutating the call bits combines them.
             c.calls = static_cast<uint32_t>(1u << (files % rcme_fuzz::kNumCalls));
-            write(folder, std::string(kind ? "generic_" : "corridor_") + methodNames[method], c);
+            write(folder, std::string(kind ? "generic_" : "corridor_") + methodNames[method],
+                  fitToCalls(c));
             ++files;
 
             // The same without a camera matrix, with float points in another layout.
@@ -125,7 +138,8 @@ int main(int argc, char** argv)
             c.layouts = static_cast<uint8_t>(0x10 * (method % 7) + (method + 1) % 7);
             c.calls = static_cast<uint32_t>(1u << (files % rcme_fuzz::kNumCalls));
             write(folder,
-                  std::string(kind ? "generic_" : "corridor_") + methodNames[method] + "_nok", c);
+                  std::string(kind ? "generic_" : "corridor_") + methodNames[method] + "_nok",
+                  fitToCalls(c));
             ++files;
         }
     std::printf("%d seeds written to %s\n", files, folder.c_str());
