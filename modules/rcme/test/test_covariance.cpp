@@ -74,19 +74,28 @@ TEST(Rcme_Covariance, matches_monte_carlo_of_the_refined_motion)
     EXPECT_NEAR(ratio, 1.0, 0.15);
 }
 
+// The basis B = (b1, b2) of t's complement that Report::covariance uses: b1 = normalize(t x e_k),
+// e_k the axis of t's smallest absolute component, b2 = t x b1.
+void tangentBasis(const Vec3d& t, Vec3d& b1, Vec3d& b2)
+{
+    int axis = 0;
+    for (int k = 1; k < 3; ++k)
+        if (std::abs(t[k]) < std::abs(t[axis]))
+            axis = k;
+    Vec3d e(0, 0, 0);
+    e[axis] = 1;
+    b1 = cv::normalize(t.cross(e));
+    b2 = t.cross(b1);
+}
+
 // The 5-DoF NEES x^T Sigma^-1 x of a reported motion, x = (omega, beta) in the tangent of
 // Report::covariance (R_true = R exp([omega]x), t_true ~ t + B beta).
 double motionNees(const Report& r, const Matx33d& Rgt, const Vec3d& tgt)
 {
     const Matx33d R(r.R);
     const Vec3d t = Vec3d(r.t) / cv::norm(Vec3d(r.t)), tg = tgt / cv::norm(tgt);
-    int k = 0;
-    for (int i = 1; i < 3; ++i)
-        if (std::abs(t[i]) < std::abs(t[k]))
-            k = i;
-    Vec3d axis(0, 0, 0);
-    axis[k] = 1;
-    const Vec3d b1 = normalize(t.cross(axis)), b2 = t.cross(b1);
+    Vec3d b1, b2;
+    tangentBasis(t, b1, b2);
     const Vec3d omega = rotationVector(R.t() * Rgt), along = tg / t.dot(tg) - t;
     const Matx<double, 5, 1> x(omega[0], omega[1], omega[2], b1.dot(along), b2.dot(along));
     const Matx<double, 5, 5> covariance(r.covariance);
@@ -174,13 +183,8 @@ TEST(Rcme_Covariance, follows_the_noise_choice)
 void applyTangent(const Matx33d& R, const Vec3d& t, const Vec<double, 5>& theta, Matx33d& Rout,
                   Vec3d& tout)
 {
-    int axis = 0;
-    for (int k = 1; k < 3; ++k)
-        if (std::abs(t[k]) < std::abs(t[axis]))
-            axis = k;
-    Vec3d e(0, 0, 0);
-    e[axis] = 1;
-    const Vec3d b1 = cv::normalize(t.cross(e)), b2 = t.cross(b1);
+    Vec3d b1, b2;
+    tangentBasis(t, b1, b2);
     Rout = R * rotationFromVector(Vec3d(theta[0], theta[1], theta[2]));
     tout = cv::normalize(t + theta[3] * b1 + theta[4] * b2);
 }
