@@ -248,6 +248,9 @@ const char* statusExplanation(cv::rcme::Status status)
                "motion";
     case cv::rcme::STATUS_PURE_ROTATION:
         return "the camera only rotated: R is determined, the translation is not (t is zero)";
+    case cv::rcme::STATUS_UNDETERMINED_MOTION:
+        return "the inliers do not determine the motion to the accuracy asked: a distinct motion "
+               "explains them about as well, or its uncertainty exceeds the bound";
     }
     return "unknown status";
 }

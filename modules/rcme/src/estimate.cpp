@@ -36,13 +36,9 @@ struct Estimation
 // The covariance and its per-axis standard deviations in degrees.
 void setMotionUncertainty(const Eigen::Matrix<double, 5, 5>& covariance, Report& report)
 {
-    constexpr double kDeg = 180.0 / CV_PI;
     report.covariance = toMat(covariance);
-    report.rotationStdDeg = toMat(covariance.diagonal().head<3>().cwiseSqrt() * kDeg);
-    // The direction's two tangent coordinates are angles (rad) to first order.
-    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> direction(
-        covariance.bottomRightCorner<2, 2>());
-    report.translationStdDeg = std::sqrt(std::max(0.0, direction.eigenvalues()(1))) * kDeg;
+    report.rotationStdDeg = toMat(detail::rotationStdDeg(covariance));
+    report.translationStdDeg = detail::translationDirectionStdDeg(covariance);
 }
 
 void fail(Report& report, std::vector<uchar>& mask, Status status, const std::string& message)
@@ -79,6 +75,8 @@ Estimation estimate(InputArray points1, InputArray points2, InputArray cameraMat
     if (params.degeneracyTest)
         detail::decideDegeneracy(data, components, result);
     detail::finalizeModel(data, components, result);
+    detail::resolveRivalMotions(data, components, result);
+    detail::checkMotionUncertainty(data, components, result);
 
     Estimation out;
     Report& report = out.report;
@@ -121,6 +119,7 @@ Estimation estimate(InputArray points1, InputArray points2, InputArray cameraMat
     report.iterations = result.iterations;
     report.pointsPerHypothesis = result.pointsPerHypothesis;
     report.meanEntropy = result.score.meanEntropy;
+    report.rivalCostGap = result.rivalCostGap;
     if (report.status != STATUS_SUCCESS && report.status != STATUS_PURE_ROTATION)
         out.inFront.assign(out.mask.size(), 0);
     report.inlierCount = static_cast<int>(std::count(out.mask.begin(), out.mask.end(), 1));

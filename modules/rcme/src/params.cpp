@@ -13,7 +13,8 @@ Params::Params()
       alpha(0.05), entropyThreshold(1.27), inlierRatioFactor(0.9), priorInlierRatio(0.0),
       consistencyDof(1), sampleFitIterations(5), sampleLeverage(false),
       earlyTerminationEntropy(0.0), localOptimization(false), degeneracyTest(true),
-      isParallel(false), timeBudget(0.0)
+      ambiguityMargin(0.0), maxRotationStdDeg(0.0), maxTranslationStdDeg(0.0), isParallel(false),
+      timeBudget(0.0)
 {
 }
 
@@ -48,7 +49,8 @@ Report::Report()
       pointsPerHypothesis(std::numeric_limits<double>::quiet_NaN()),
       meanEntropy(std::numeric_limits<double>::quiet_NaN()),
       noiseSigma(std::numeric_limits<double>::quiet_NaN()),
-      translationStdDeg(std::numeric_limits<double>::quiet_NaN()), timeSeconds(0)
+      translationStdDeg(std::numeric_limits<double>::quiet_NaN()),
+      rivalCostGap(std::numeric_limits<double>::quiet_NaN()), timeSeconds(0)
 {
 }
 
@@ -65,6 +67,8 @@ String statusToString(Status status)
         return "degenerate configuration";
     case STATUS_PURE_ROTATION:
         return "pure rotation";
+    case STATUS_UNDETERMINED_MOTION:
+        return "undetermined motion";
     }
     return cv::format("unknown status %d", static_cast<int>(status));
 }

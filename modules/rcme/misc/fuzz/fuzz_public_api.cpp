@@ -220,7 +220,7 @@ Status rotationStatus(Status status)
 
 void checkStatus(Status status)
 {
-    FUZZ_REQUIRE(status >= STATUS_SUCCESS && status <= STATUS_PURE_ROTATION);
+    FUZZ_REQUIRE(status >= STATUS_SUCCESS && status <= STATUS_UNDETERMINED_MOTION);
     FUZZ_REQUIRE(!statusToString(status).empty());
 }
 

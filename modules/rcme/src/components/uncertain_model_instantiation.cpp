@@ -54,21 +54,7 @@ private:
     // Cheirality decided by the sample alone: the hypothesis knows nothing else.
     bool motionFromSample(const TwoViewData& data, const std::vector<int>& sample, Model& model)
     {
-        samplePoints1_.clear();
-        samplePoints2_.clear();
-        for (int i : sample) {
-            samplePoints1_.push_back(data.points1[static_cast<size_t>(i)]);
-            samplePoints2_.push_back(data.points2[static_cast<size_t>(i)]);
-        }
-        const Eigen::Matrix3d E =
-            model.E.isZero() ? essentialFromFundamental(model.F, data.K) : model.E;
-        if (recoverMotionFromEssential(E, samplePoints1_, samplePoints2_, data.Kinv, nullptr,
-                                       model.R, model.t) <= 0)
-            return false;
-        model.E = skew(model.t) * model.R;
-        model.F = fundamentalFromEssential(model.E, data.Kinv);
-        model.hasMotion = true;
-        return true;
+        return recoverMotionFromSample(data, sample, model, samplePoints1_, samplePoints2_);
     }
 
     std::unique_ptr<MinimalSolver> solver_;

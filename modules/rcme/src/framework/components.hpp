@@ -42,6 +42,17 @@ essential) is decomposed with cheirality on `inliers`, and E, F are set from (R,
 no decomposition puts any inlier in front of both cameras. */
 bool recoverMotion(const TwoViewData& data, const std::vector<uchar>& inliers, Model& model);
 
+/** The same from the points of a minimal sample alone (cheirality decided by them), with
+`points1`, `points2` as buffers for the sample's points. */
+bool recoverMotionFromSample(const TwoViewData& data, const std::vector<int>& sample, Model& model,
+                             std::vector<Eigen::Vector2d>& points1,
+                             std::vector<Eigen::Vector2d>& points2);
+
+/** Whether two motions are different answers: their rotations differ by more than 5 deg or their
+translation directions by more than 15 deg, the accuracy a right motion is held to
+(doc/results.md). Both models must have their motion. */
+bool areDistinctMotions(const Model& a, const Model& b);
+
 //! Quality of a hypothesis as a scorer sees it; lower value is better.
 struct Score
 {
@@ -180,6 +191,9 @@ struct EstimatorComponents
     bool parallel = false;
     //! cv::getTickCount() value at which the hypothesis loop stops (Params::timeBudget); 0: none.
     int64 deadline = 0;
+    //! The final tests of a motion (calibrated data only; <= 0: off): Params::ambiguityMargin,
+    //! Params::maxRotationStdDeg and Params::maxTranslationStdDeg.
+    double ambiguityMargin = 0, maxRotationStdDeg = 0, maxTranslationStdDeg = 0;
 };
 
 /** The inlier count that chance alone exceeds with probability at most 5 % over a whole run: a

@@ -103,6 +103,9 @@ EstimatorComponents createEstimator(const Params& params, const TwoViewData& dat
     if (params.localOptimization)
         c.localOptimizer = createGoldStandardRefiner(kLocalOptimizationIterations);
     c.parallel = params.isParallel;
+    c.ambiguityMargin = params.ambiguityMargin;
+    c.maxRotationStdDeg = params.maxRotationStdDeg;
+    c.maxTranslationStdDeg = params.maxTranslationStdDeg;
     return c;
 }
 

@@ -5,6 +5,7 @@
 
 #include "framework/candidate_set.hpp"
 #include "geometry/epipolar.hpp"
+#include "geometry/motion_parameterization.hpp"
 
 namespace cv {
 namespace rcme {
@@ -101,6 +102,10 @@ Model polishRejected(const TwoViewData& data, EstimatorComponents& c, Model mode
     return model;
 }
 
+// Distinct motions the ambiguity test remembers: corridors and bas-relief scenes show two or
+// three basins; the rest are minimal samples of one basin scattered by noise.
+constexpr int kRivalCapacity = 8;
+
 // With Params::isParallel, hypotheses are evaluated in batches of this many iterations. The size
 // is fixed, not taken from the thread count, so the work done never depends on the threads.
 constexpr int kParallelBatch = 64;
@@ -169,6 +174,8 @@ public:
         }
         if (c.localOptimizer)
             localInliers_.assign(static_cast<size_t>(data.size()), 0);
+        if (c.ambiguityMargin > 0 && data.calibrated)
+            rivals_ = std::make_unique<RivalMotions>(kRivalCapacity);
         const size_t solutions = static_cast<size_t>(c.solver->maxSolutions());
         slots_.resize(static_cast<size_t>(batch_));
         for (IterationSlot& slot : slots_) {
@@ -196,6 +203,8 @@ public:
                 commit(slots_[static_cast<size_t>(k)], candidates, result);
         }
         result.iterations = iteration;
+        if (rivals_)
+            result.rivals = rivals_->rivals();
         if (result.hypotheses > 0)
             result.pointsPerHypothesis =
                 static_cast<double>(pointsEvaluated_) / static_cast<double>(result.hypotheses);
@@ -269,6 +278,8 @@ private:
                 result.mostSupportedInliers = score.inlierCount;
                 result.mostSupported = model;
             }
+            if (rivals_ && score.isCandidate)
+                rivals_->offer(data_, slot.sample, model, score);
             if (!score.isCandidate || !candidates.add(model, score))
                 continue;
             if (c_.localOptimizer)
@@ -300,6 +311,7 @@ private:
     std::vector<IterationSlot> slots_;
     std::vector<ModelVerifier*> sequentialVerifiers_; //!< from the first sequential one on
     std::vector<uchar> localInliers_;                 //!< local optimisation's buffer, reused
+    std::unique_ptr<RivalMotions> rivals_;            //!< with the ambiguity test only
     long long pointsEvaluated_ = 0; //!< residuals evaluated by verification and scoring
 };
 
@@ -317,23 +329,6 @@ void rejectModel(RansacResult& result, Status status, const std::string& message
 
 namespace {
 
-// Angle (degrees) between two rotations and between two unit directions.
-double rotationAngleDeg(const Eigen::Matrix3d& A, const Eigen::Matrix3d& B)
-{
-    const double c = std::max(-1.0, std::min(1.0, ((A * B.transpose()).trace() - 1.0) / 2.0));
-    return std::acos(c) * 180.0 / CV_PI;
-}
-
-double directionAngleDeg(const Eigen::Vector3d& a, const Eigen::Vector3d& b)
-{
-    return std::acos(std::max(-1.0, std::min(1.0, a.dot(b)))) * 180.0 / CV_PI;
-}
-
-// The planar motion's candidates are two motions when their rotations or translation directions
-// differ by more than this (the accuracy the benchmark asks of a right motion): closer ones are
-// one motion whose direction a plane determines loosely (refits from one basin measured up to
-// 7 deg apart), while the twin of a homography's decomposition is far off (t along the normal).
-constexpr double kDistinctRotationDeg = 5.0, kDistinctTranslationDeg = 15.0;
 // ORB-SLAM's ambiguity ratio (Mur-Artal et al. 2015, homography reconstruction): a second
 // motion with at least this share of the best one's support is not ruled out by cheirality.
 constexpr double kAmbiguousSupportRatio = 0.75;
@@ -365,38 +360,52 @@ PlanarFit planarFit(const TwoViewData& data, const Model& model, std::vector<uch
     return fit;
 }
 
-/* Each candidate motion is refitted on the points it explains itself, not on the selected
-model's inliers: on a plane the selected F is one of a family, and its inliers pull every
-candidate towards it. */
+// MSAC's cost of F: each point's squared Sampson distance, at most the squared threshold.
+double truncatedCost(const TwoViewData& data, const Eigen::Matrix3d& F)
+{
+    const double thresholdSquared = data.threshold * data.threshold;
+    double cost = 0.0;
+    for (size_t i = 0; i < data.points1.size(); ++i)
+        cost +=
+            std::min(thresholdSquared, sampsonDistanceSquared(F, data.points1[i], data.points2[i]));
+    return cost;
+}
+
+/* Refits a motion on the points it explains itself (within the band, in front of both
+cameras), twice, and returns its fit. Not on the selected model's inliers: those pull every
+other motion towards the selected one (on a plane the selected F is one of a family). */
+PlanarFit refitOnOwnPoints(const TwoViewData& data, Model& motion)
+{
+    constexpr int kFitIterations = 20, kRounds = 2;
+    std::vector<uchar> within, inFront;
+    std::vector<int> inliers;
+    for (int round = 0; round < kRounds; ++round) {
+        planarFit(data, motion, within, inFront);
+        inliers.clear();
+        for (size_t i = 0; i < within.size(); ++i)
+            if (within[i])
+                inliers.push_back(static_cast<int>(i));
+        Model fitted = motion;
+        if (fitModelOn(data, inliers, kFitIterations, fitted))
+            motion = fitted;
+    }
+    return planarFit(data, motion, within, inFront);
+}
+
 void resolvePlanarMotion(const TwoViewData& data, EstimatorComponents& c, const Eigen::Matrix3d& H,
                          RansacResult& result)
 {
-    constexpr int kFitIterations = 20, kRounds = 2;
     std::vector<Model> motions = homographyMotions(data, H);
     motions.insert(motions.begin(), result.model);
     std::vector<PlanarFit> fits(motions.size());
-    std::vector<uchar> within, inFront;
-    std::vector<int> inliers;
     size_t best = 0;
     for (size_t m = 0; m < motions.size(); ++m) {
-        for (int round = 0; round < kRounds; ++round) {
-            planarFit(data, motions[m], within, inFront);
-            inliers.clear();
-            for (size_t i = 0; i < within.size(); ++i)
-                if (within[i])
-                    inliers.push_back(static_cast<int>(i));
-            Model fitted = motions[m];
-            if (fitModelOn(data, inliers, kFitIterations, fitted))
-                motions[m] = fitted;
-        }
-        fits[m] = planarFit(data, motions[m], within, inFront);
+        fits[m] = refitOnOwnPoints(data, motions[m]);
         if (fits[m].cost < fits[best].cost)
             best = m;
     }
     for (size_t m = 0; m < motions.size(); ++m) {
-        const bool distinct =
-            rotationAngleDeg(motions[m].R, motions[best].R) > kDistinctRotationDeg ||
-            directionAngleDeg(motions[m].t, motions[best].t) > kDistinctTranslationDeg;
+        const bool distinct = areDistinctMotions(motions[m], motions[best]);
         if (distinct && fits[m].support >= kAmbiguousSupportRatio * fits[best].support) {
             rejectModel(result, STATUS_DEGENERATE_CONFIGURATION,
                         "a homography explains the inliers (planar scene) and two of its motions "
@@ -405,6 +414,7 @@ void resolvePlanarMotion(const TwoViewData& data, EstimatorComponents& c, const 
             return;
         }
     }
+    result.planar = true;
     result.model = motions[best];
     c.scorer->classify(data, result.model, result.mask);
     result.score = c.scorer->score(data, result.model);
@@ -450,6 +460,86 @@ void decideDegeneracy(const TwoViewData& data, EstimatorComponents& c, RansacRes
         return;
     }
     resolvePlanarMotion(data, c, homography.H, result);
+}
+
+void resolveRivalMotions(const TwoViewData& data, EstimatorComponents& c, RansacResult& result)
+{
+    constexpr double kSupportShare = 0.5; // as RivalMotions' gate
+    if (c.ambiguityMargin <= 0 || !data.calibrated || result.status != STATUS_SUCCESS ||
+        !result.model.hasMotion || result.planar)
+        return;
+    // The cost is MSAC's, without the planar test's cheirality term: the depth sign of far
+    // points flips with the noise, and counting them as outliers handed small-baseline corridors
+    // to mirrored rivals. Each motion's decomposition was already chosen by cheirality.
+    std::vector<Model> motions{result.model};
+    std::vector<double> costs{truncatedCost(data, result.model.F)};
+    for (const RivalMotions::Rival& rival : result.rivals) {
+        if (rival.score.inlierCount < kSupportShare * result.score.inlierCount ||
+            !areDistinctMotions(rival.model, result.model))
+            continue;
+        Model refitted = rival.model;
+        if (refitOnOwnPoints(data, refitted).support > 0 &&
+            areDistinctMotions(refitted, result.model)) {
+            motions.push_back(refitted);
+            costs.push_back(truncatedCost(data, refitted.F));
+        }
+    }
+    size_t best = 0;
+    for (size_t m = 1; m < motions.size(); ++m)
+        if (costs[m] < costs[best])
+            best = m;
+    if (best != 0) {
+        // A rival explains the data better than the loop's choice: it becomes the estimate.
+        Model chosen = motions[best];
+        std::vector<uchar> mask;
+        c.scorer->classify(data, chosen, mask);
+        const Score score = c.scorer->score(data, chosen);
+        if (score.isCandidate) {
+            result.model = chosen;
+            result.mask = mask;
+            result.score = score;
+            finalizeModel(data, c, result);
+            costs[best] = truncatedCost(data, result.model.F);
+        } else {
+            best = 0;
+        }
+    }
+    double gap = std::numeric_limits<double>::infinity();
+    for (size_t m = 0; m < motions.size(); ++m)
+        if (m != best && areDistinctMotions(motions[m], motions[best]))
+            gap = std::min(gap, (costs[m] - costs[best]) / (data.sigma * data.sigma));
+    result.rivalCostGap = std::max(0.0, gap);
+    if (result.rivalCostGap < c.ambiguityMargin)
+        rejectModel(result, STATUS_UNDETERMINED_MOTION,
+                    cv::format("a distinct motion explains the inliers about as well (cost gap "
+                               "%.1f sigma^2 < Params.ambiguityMargin %.1f): the motion is not "
+                               "determined",
+                               result.rivalCostGap, c.ambiguityMargin),
+                    result.model);
+}
+
+void checkMotionUncertainty(const TwoViewData& data, const EstimatorComponents& c,
+                            RansacResult& result)
+{
+    const Model& model = result.model;
+    if (!data.calibrated || result.status != STATUS_SUCCESS ||
+        model.uncertaintyDof != MotionTangent::kDof)
+        return;
+    const Eigen::Matrix<double, 5, 5> covariance = model.covariance.topLeftCorner<5, 5>();
+    const double rotationStd = rotationStdDeg(covariance).maxCoeff();
+    const double translationStd = translationDirectionStdDeg(covariance);
+    if (c.maxRotationStdDeg > 0 && rotationStd > c.maxRotationStdDeg)
+        rejectModel(result, STATUS_UNDETERMINED_MOTION,
+                    cv::format("the rotation's standard deviation %.2f deg exceeds "
+                               "Params.maxRotationStdDeg %.2f: the motion is not determined",
+                               rotationStd, c.maxRotationStdDeg),
+                    model);
+    else if (c.maxTranslationStdDeg > 0 && translationStd > c.maxTranslationStdDeg)
+        rejectModel(result, STATUS_UNDETERMINED_MOTION,
+                    cv::format("the translation direction's standard deviation %.2f deg exceeds "
+                               "Params.maxTranslationStdDeg %.2f: the motion is not determined",
+                               translationStd, c.maxTranslationStdDeg),
+                    model);
 }
 
 void searchHypotheses(const TwoViewData& data, EstimatorComponents& components,

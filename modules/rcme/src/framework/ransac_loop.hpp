@@ -4,6 +4,7 @@
 #ifndef OPENCV_RCME_FRAMEWORK_RANSAC_LOOP_HPP
 #define OPENCV_RCME_FRAMEWORK_RANSAC_LOOP_HPP
 
+#include "components/rival_motions.hpp"
 #include "framework/components.hpp"
 
 #include <limits>
@@ -36,6 +37,14 @@ struct RansacResult
     //! test that failed, for diagnostics (Report::rejectedF, rejectedR, rejectedT).
     bool hasRejected = false;
     Model rejected;
+    //! The motion is a planar scene's (decideDegeneracy): Sampson costs do not tell its rivals.
+    bool planar = false;
+    //! The distinct motions among the candidates (with components.ambiguityMargin > 0 and K).
+    std::vector<RivalMotions::Rival> rivals;
+    /** The ambiguity test's measure: (C_rival - C) / sigma^2, C the truncated cost (MSAC, a
+    point behind a camera costing as an outlier) of the returned motion and C_rival that of the
+    best distinct rival, refitted; +inf when no rival came close, NaN when the test did not run. */
+    double rivalCostGap = std::numeric_limits<double>::quiet_NaN();
 };
 
 /** Turns `result` into a failure with `status`: the mask is cleared and `model` is kept as the
@@ -61,11 +70,29 @@ outcome is result.rejected. */
 void decideDegeneracy(const TwoViewData& data, EstimatorComponents& components,
                       RansacResult& result);
 
+/** The ambiguity test (components.ambiguityMargin > 0, calibrated data, after finalizeModel; not
+on a planar scene's motion, see decideDegeneracy):
+each rival motion of the loop (result.rivals) with at least half the selected model's support
+and distinct from it is refitted on the points it explains itself; the motion of least truncated
+cost is kept (a rival can beat the selected one: the loop scores raw minimal-sample hypotheses;
+it is then finalized in its turn),
+and when a distinct one comes within the margin of it (result.rivalCostGap below
+ambiguityMargin) the data do not tell the two: #STATUS_UNDETERMINED_MOTION, the kept motion being
+result.rejected. */
+void resolveRivalMotions(const TwoViewData& data, EstimatorComponents& components,
+                         RansacResult& result);
+
+/** The uncertainty test, after finalizeModel: a motion whose propagated standard deviation of a
+rotation axis exceeds components.maxRotationStdDeg, or of the translation direction
+components.maxTranslationStdDeg, is not determined to the asked accuracy:
+#STATUS_UNDETERMINED_MOTION. Needs the final covariance (Params::refine). */
+void checkMotionUncertainty(const TwoViewData& data, const EstimatorComponents& components,
+                            RansacResult& result);
+
 /** The final fit of a successful run's model and its covariance (Refiner::finalize), after the
 decision on what the inliers determine (decideDegeneracy): the model it fits is the one that is
 returned. The mask becomes the points of that fit that the fitted model still holds. */
-void finalizeModel(const TwoViewData& data, EstimatorComponents& components,
-                   RansacResult& result);
+void finalizeModel(const TwoViewData& data, EstimatorComponents& components, RansacResult& result);
 
 class CandidateSet;
 

@@ -155,6 +155,12 @@ void validateParams(const Params& p)
     checkRange(std::isfinite(p.earlyTerminationEntropy),
                "Params.earlyTerminationEntropy must be finite (<= 0: off)");
     checkRange(!std::isnan(p.timeBudget), "Params.timeBudget must be a number (<= 0: none)");
+    checkRange(!std::isnan(p.ambiguityMargin),
+               "Params.ambiguityMargin must be a number (<= 0: off)");
+    checkRange(!std::isnan(p.maxRotationStdDeg),
+               "Params.maxRotationStdDeg must be a number (<= 0: off)");
+    checkRange(!std::isnan(p.maxTranslationStdDeg),
+               "Params.maxTranslationStdDeg must be a number (<= 0: off)");
 }
 
 double inlierThreshold(const Params& params)

@@ -83,6 +83,18 @@ void FundamentalTangent::derivatives(Eigen::Matrix3d dF[kDof]) const
     dF[6] = U * Eigen::Vector3d(0, 1, 0).asDiagonal() * V.transpose();
 }
 
+Eigen::Vector3d rotationStdDeg(const Eigen::Matrix<double, 5, 5>& covariance)
+{
+    return covariance.diagonal().head<3>().cwiseMax(0.0).cwiseSqrt() * (180.0 / CV_PI);
+}
+
+double translationDirectionStdDeg(const Eigen::Matrix<double, 5, 5>& covariance)
+{
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> direction(
+        covariance.bottomRightCorner<2, 2>());
+    return std::sqrt(std::max(0.0, direction.eigenvalues()(1))) * (180.0 / CV_PI);
+}
+
 } // namespace detail
 } // namespace rcme
 } // namespace cv

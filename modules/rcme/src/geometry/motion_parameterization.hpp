@@ -34,6 +34,13 @@ struct MotionTangent
     void essentialDerivatives(Eigen::Matrix3d dE[kDof]) const;
 };
 
+/** Standard deviations of a MotionTangent covariance (5x5), in degrees: of the rotation
+increment about each axis, and of the translation direction along its least determined
+direction (the larger semi-axis of its 1-sigma cone; beta's two coordinates are angles to first
+order). */
+Eigen::Vector3d rotationStdDeg(const Eigen::Matrix<double, 5, 5>& covariance);
+double translationDirectionStdDeg(const Eigen::Matrix<double, 5, 5>& covariance);
+
 /** Rank-2 F = U diag(1, s, 0) V^T with U, V rotations, theta = (a, b, c):
 F(theta) = U exp([a]x) diag(1, s + c, 0) (V exp([b]x))^T. */
 struct FundamentalTangent

@@ -81,7 +81,13 @@ enum Status
     a motion (Torr's GRIC): R is returned, t is zero (not determined), E and F are empty, and the
     covariance is the 3x3 one of the rotation increment. The mask marks the points the rotation
     explains. */
-    STATUS_PURE_ROTATION = 4
+    STATUS_PURE_ROTATION = 4,
+    /** with a camera matrix, the inliers do not determine the motion to the accuracy asked: a
+    distinct motion (rotation more than 5 deg or translation direction more than 15 deg away)
+    explains them about as well (Params::ambiguityMargin), or the motion's propagated standard
+    deviation exceeds Params::maxRotationStdDeg or Params::maxTranslationStdDeg. The motion
+    turned down is in Report::rejectedR, rejectedT. */
+    STATUS_UNDETERMINED_MOTION = 5
 };
 
 /** @brief Parameters of the robust estimators, shaped like cv::UsacParams.
@@ -169,6 +175,24 @@ struct CV_EXPORTS_W_SIMPLE Params
     the plane is taken from E or from the homography's decomposition, whichever puts the most
     inliers in front of both cameras (degenerate when two motions do). Default true. */
     CV_PROP_RW bool degeneracyTest;
+    /** The ambiguity test, with a camera matrix: the loop remembers the best hypothesis of each
+    distinct motion it saw; after it, those with at least half the selected model's support are
+    refitted on the points they explain, the one of least truncated cost (MSAC, a point behind a
+    camera costing as an outlier) is returned, and when a distinct motion's cost is within this
+    many sigma^2 of it (Report::rivalCostGap, twice a log-likelihood ratio) the status is
+    #STATUS_UNDETERMINED_MOTION. <= 0 disables the test (the rivals are then neither refitted
+    nor compared). Default 0 (off) until measured on the real pairs; 2 was chosen on synthetic
+    scenes (doc/results.md, "Failure signals"). */
+    CV_PROP_RW double ambiguityMargin;
+    /** The uncertainty test, with a camera matrix and refinement: a motion whose rotation
+    standard deviation about an axis (Report::rotationStdDeg) exceeds this many degrees gives
+    #STATUS_UNDETERMINED_MOTION. <= 0 disables it. Default 0 (off); 2 deg (5 deg at 95 % for
+    three axes) was chosen on synthetic scenes (doc/results.md, "Failure signals"). */
+    CV_PROP_RW double maxRotationStdDeg;
+    /** The same for the translation direction (Report::translationStdDeg), degrees. <= 0
+    disables it. Default 0 (off); 6 deg (15 deg at 95 % for two axes) was chosen on synthetic
+    scenes. */
+    CV_PROP_RW double maxTranslationStdDeg;
     /** For #SAMPLER_PROSAC: one score per correspondence, higher is better (e.g. the negated
     ratio of the two best descriptor distances), CV_32F or CV_64F. Empty (default): the points
     are taken as already sorted by decreasing quality, as OpenCV's USAC PROSAC assumes. */
@@ -237,6 +261,11 @@ struct CV_EXPORTS_W_SIMPLE Report
     /** Standard deviation of the translation direction's angle along its least determined
     direction, degrees (the larger semi-axis of its 1-sigma cone); NaN without covariance. */
     CV_PROP_RW double translationStdDeg;
+    /** The ambiguity test's measure (Params::ambiguityMargin): the truncated cost of the best
+    distinct rival motion minus that of the returned (or rejected) one, over sigma^2; +inf when
+    no distinct motion with half the support was seen, NaN when the test did not run (no camera
+    matrix, test off, or no motion). */
+    CV_PROP_RW double rivalCostGap;
     CV_PROP_RW double timeSeconds; //!< wall time of the call
     /** Rejected, for diagnostics: when the status is not #STATUS_SUCCESS, the 3x3 F (pixels,
     ||F|| = 1) the method would have returned without the test that failed: the selected model

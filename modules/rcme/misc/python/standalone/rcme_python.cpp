@@ -676,6 +676,7 @@ PYBIND11_MODULE(_rcme, m)
     m.attr("STATUS_NOT_ENOUGH_POINTS") = static_cast<int>(STATUS_NOT_ENOUGH_POINTS);
     m.attr("STATUS_DEGENERATE_CONFIGURATION") = static_cast<int>(STATUS_DEGENERATE_CONFIGURATION);
     m.attr("STATUS_PURE_ROTATION") = static_cast<int>(STATUS_PURE_ROTATION);
+    m.attr("STATUS_UNDETERMINED_MOTION") = static_cast<int>(STATUS_UNDETERMINED_MOTION);
     m.attr("SCENE_CORRIDOR") = static_cast<int>(SCENE_CORRIDOR);
     m.attr("SCENE_GENERIC") = static_cast<int>(SCENE_GENERIC);
     m.attr("SCENE_PLANE") = static_cast<int>(SCENE_PLANE);
@@ -721,6 +722,13 @@ PYBIND11_MODULE(_rcme, m)
                "refit new candidates on their inliers (LO-RANSAC); default False")
         .plain("degeneracyTest", &Params::degeneracyTest,
                "final inliers fit a homography as well as F -> degenerate status; default True")
+        .plain("ambiguityMargin", &Params::ambiguityMargin,
+               "a distinct motion within this many sigma^2 of cost -> undetermined; <= 0 "
+               "(default): off")
+        .plain("maxRotationStdDeg", &Params::maxRotationStdDeg,
+               "rotation std above this (degrees) -> undetermined; <= 0 (default): off")
+        .plain("maxTranslationStdDeg", &Params::maxTranslationStdDeg,
+               "translation direction std above this (degrees) -> undetermined; <= 0: off")
         .mat("matchQuality", &Params::matchQuality,
              "SAMPLER_PROSAC: one score per correspondence, higher is better; None: sorted")
         .plain("isParallel", &Params::isParallel,
@@ -752,6 +760,8 @@ PYBIND11_MODULE(_rcme, m)
              "3x1 rotation std about camera 1's x, y, z (degrees) or None")
         .plain("translationStdDeg", &Report::translationStdDeg,
                "translation direction's largest angular std (degrees), or NaN")
+        .plain("rivalCostGap", &Report::rivalCostGap,
+               "cost gap to the best distinct rival motion (sigma^2), inf if none, NaN if untested")
         .plain("timeSeconds", &Report::timeSeconds)
         .mat("rejectedF", &Report::rejectedF,
              "rejected, for diagnostics: 3x3 F the failed estimation rejected, or None")
