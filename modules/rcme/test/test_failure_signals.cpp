@@ -78,6 +78,25 @@ TEST(Rcme_FailureSignals, ambiguity_test_reports_its_gap_and_flags_below_the_mar
     EXPECT_GE(tested, 4) << flagged << " flagged";
 }
 
+TEST(Rcme_FailureSignals, nan_bounds_are_rejected_naming_the_field)
+{
+    const SyntheticScene s = genericScene(0);
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    for (const char* field : {"ambiguityMargin", "maxRotationStdDeg", "maxTranslationStdDeg"}) {
+        cv::rcme::Params params;
+        const std::string name(field);
+        (name == "ambiguityMargin" ? params.ambiguityMargin
+         : name == "maxRotationStdDeg" ? params.maxRotationStdDeg
+                                       : params.maxTranslationStdDeg) = nan;
+        try {
+            estimateRelativeMotion(s.points1, s.points2, s.cameraMatrix, params);
+            ADD_FAILURE() << field << ": NaN accepted";
+        } catch (const cv::Exception& e) {
+            EXPECT_NE(std::string(e.what()).find(field), std::string::npos) << e.what();
+        }
+    }
+}
+
 TEST(Rcme_FailureSignals, statusToString_names_the_new_status)
 {
     EXPECT_EQ(statusToString(STATUS_UNDETERMINED_MOTION), "undetermined motion");

@@ -371,8 +371,8 @@ double truncatedCost(const TwoViewData& data, const Eigen::Matrix3d& F)
     return cost;
 }
 
-/* Refits a motion on the points it explains itself (within the band, in front of both
-cameras), twice, and returns its fit. Not on the selected model's inliers: those pull every
+/* Refits a motion on the points within its own band, twice, and returns its fit (support:
+those in front of both cameras). Not on the selected model's inliers: those pull every
 other motion towards the selected one (on a plane the selected F is one of a family). */
 PlanarFit refitOnOwnPoints(const TwoViewData& data, Model& motion)
 {
