@@ -33,6 +33,16 @@ if(RCME_SANITIZE)
       message(FATAL_ERROR "RCME_FUZZ needs clang (CMAKE_CXX_COMPILER=clang++) and RCME_SANITIZE=address")
     endif()
     string(APPEND _rcme_sanitize_flags " -fsanitize=fuzzer-no-link -fno-sanitize-coverage=trace-cmp")
+    # Counters only in rcme's own functions (the list says why), for the targets of this
+    # directory (not CMake's try_compile checks, which run elsewhere). The path is relative to the
+    # build directory, where Ninja runs the compiler, so that ccache's key stays the same across
+    # clones; ccache does not read the list, so its hash goes on the command line too.
+    get_filename_component(_rcme_allowlist
+                           "${CMAKE_CURRENT_LIST_DIR}/../misc/fuzz/coverage_allowlist.txt" ABSOLUTE)
+    file(RELATIVE_PATH _rcme_allowlist_rel "${CMAKE_BINARY_DIR}" "${_rcme_allowlist}")
+    file(MD5 "${_rcme_allowlist}" _rcme_allowlist_md5)
+    add_compile_options("-fsanitize-coverage-allowlist=${_rcme_allowlist_rel}"
+                        "-DRCME_COVERAGE_ALLOWLIST_MD5=${_rcme_allowlist_md5}")
   endif()
   string(APPEND _rcme_sanitize_flags " -fno-omit-frame-pointer -g")
   foreach(_var CMAKE_CXX_FLAGS CMAKE_EXE_LINKER_FLAGS CMAKE_SHARED_LINKER_FLAGS)
