@@ -94,7 +94,9 @@ inline cv::rcme::MinimalSolverKind parseSolver(const std::string& name)
         return cv::rcme::SOLVER_SEVEN_POINT;
     if (name == "five" || name == "5")
         return cv::rcme::SOLVER_FIVE_POINT;
-    throw UsageError("unknown --solver '" + name + "' (eight, seven, five)");
+    if (name == "auto")
+        return cv::rcme::SOLVER_AUTO;
+    throw UsageError("unknown --solver '" + name + "' (auto, eight, seven, five)");
 }
 
 inline std::string fixed(double v, int digits)

@@ -62,7 +62,7 @@ void printUsage(const char* argv0)
         << "Options (--key value or --key=value):\n"
         << "  --method M      rcme's method: " << methodNames() << "\n"
         << "                  (default standard)\n"
-        << "  --solver S      eight (default), seven, five\n"
+        << "  --solver S      auto (default: five with K, else eight), eight, seven, five\n"
         << "  --opencv-method O  essential (findEssentialMat RANSAC + recoverPose; needs a\n"
         << "                  camera matrix), fundamental (findFundamentalMat FM_RANSAC), or\n"
         << "                  none. Default: essential with a camera matrix, else fundamental.\n"
@@ -95,7 +95,7 @@ void printUsage(const char* argv0)
 struct Options
 {
     std::string method = "standard";
-    std::string solver = "eight";
+    std::string solver = "auto";
     std::string opencvMethod;     // empty: essential with a camera matrix, else fundamental
     double opencvThreshold = 0.0; // <= 0: the same as rcme's
     std::string kPath;            // empty: default, "none": uncalibrated

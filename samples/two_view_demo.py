@@ -68,7 +68,8 @@ def parse_args(argv):
     parser.add_argument("images", nargs="*", metavar="img", help="img1 img2 (default: bundled)")
     parser.add_argument("--method", default="standard",
                         help="rcme's method: %s (default standard)" % METHOD_NAMES)
-    parser.add_argument("--solver", default="eight", help="eight (default), seven, five")
+    parser.add_argument("--solver", default="auto",
+                        help="auto (default: five with K, else eight), eight, seven, five")
     parser.add_argument("--opencv-method", choices=("essential", "fundamental", "none"),
                         help="essential (findEssentialMat RANSAC + recoverPose; needs a camera "
                              "matrix), fundamental (findFundamentalMat FM_RANSAC), or none. "
@@ -123,9 +124,10 @@ def parse_method(rcme, name):
 def parse_solver(rcme, name):
     solvers = {"eight": rcme.SOLVER_EIGHT_POINT, "8": rcme.SOLVER_EIGHT_POINT,
                "seven": rcme.SOLVER_SEVEN_POINT, "7": rcme.SOLVER_SEVEN_POINT,
-               "five": rcme.SOLVER_FIVE_POINT, "5": rcme.SOLVER_FIVE_POINT}
+               "five": rcme.SOLVER_FIVE_POINT, "5": rcme.SOLVER_FIVE_POINT,
+               "auto": rcme.SOLVER_AUTO}
     if name not in solvers:
-        raise UsageError("unknown --solver '%s' (eight, seven, five)" % name)
+        raise UsageError("unknown --solver '%s' (auto, eight, seven, five)" % name)
     return solvers[name]
 
 

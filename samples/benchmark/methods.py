@@ -40,20 +40,22 @@ class Budget:
 
 
 # Estimate.status of a run without a model: rcme declined (PQI), rcme found the inliers
-# degenerate (a homography explains them about as well as F), or no model for another reason
-# (OpenCV returned none, too few points).
+# degenerate (a homography explains them about as well as F), a pure rotation, a motion the
+# inliers do not determine (undetermined), or no model for another reason (OpenCV returned
+# none, too few points).
 PQI, DEGENERATE, NO_MODEL = "PQI", "degenerate", "no model"
 PURE_ROTATION = "pure rotation"
 RCME_OUTCOMES = {int(rcme.STATUS_POOR_QUALITY_INPUT): PQI,
                  int(rcme.STATUS_DEGENERATE_CONFIGURATION): DEGENERATE}
-if hasattr(rcme, "STATUS_PURE_ROTATION"):
-    RCME_OUTCOMES[int(rcme.STATUS_PURE_ROTATION)] = PURE_ROTATION
+UNDETERMINED = "undetermined"
+RCME_OUTCOMES[int(rcme.STATUS_PURE_ROTATION)] = PURE_ROTATION
+RCME_OUTCOMES[int(rcme.STATUS_UNDETERMINED_MOTION)] = UNDETERMINED
 
 
 @dataclass
 class Estimate:
     ok: bool
-    status: str  # "ok", PQI, DEGENERATE or NO_MODEL
+    status: str  # "ok" or one of the statuses above
     F: object = None
     R: object = None
     t: object = None
@@ -69,9 +71,18 @@ class Estimate:
     rejected_t: object = None
 
 
+# The library's defaults as a user gets them (rcme.Params()), a row of its own.
+DEFAULT_METHOD = "rcme default"
+
+
 def rcme_params(method, budget):
-    params = rcme.Params()
-    params.method = method
+    """The paper's configuration of method (Params.asPublished), or the library's defaults for
+    method None; either way with the budget's noise, threshold, N and seed."""
+    if method is None:
+        params = rcme.Params()
+    else:
+        as_published = getattr(rcme.Params, "asPublished", None) or rcme.Params_asPublished
+        params = as_published(method)
     params.sigma = budget.sigma
     params.threshold = budget.threshold
     params.maxIterations = budget.iterations
@@ -183,7 +194,8 @@ def rcme_methods(module=rcme):
 
 
 # name -> (runner, can it be held to exactly N hypotheses)
-METHODS = {name: (_run_rcme(value), True) for name, value in rcme_methods()}
+METHODS = {DEFAULT_METHOD: (_run_rcme(None), True)}
+METHODS.update({name: (_run_rcme(value), True) for name, value in rcme_methods()})
 METHODS.update({
     "cv FM_RANSAC": (_run_opencv_f(cv2.FM_RANSAC), True),
     "cv FM_LMEDS": (_run_opencv_f(cv2.FM_LMEDS), False),

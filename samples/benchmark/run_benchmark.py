@@ -288,7 +288,8 @@ def confusion_section(run, names, real_datasets, N_max):
 
 
 DEFAULT_SETTINGS_N = 1000
-DEFAULT_SETTINGS_METHODS = ["RCME", "Standard", "cv USAC_DEFAULT", "cv USAC_ACCURATE"]
+DEFAULT_SETTINGS_METHODS = [methods.DEFAULT_METHOD, "RCME", "Standard", "cv USAC_DEFAULT",
+                            "cv USAC_ACCURATE", "cv E USAC_MAGSAC"]
 
 
 def run_defaults(task_pairs, sigma):

@@ -7,13 +7,13 @@ namespace cv {
 namespace rcme {
 
 Params::Params()
-    : method(METHOD_STANDARD), sampler(SAMPLER_UNIFORM), solver(SOLVER_EIGHT_POINT), sigma(1.0),
+    : method(METHOD_STANDARD), sampler(SAMPLER_UNIFORM), solver(SOLVER_AUTO), sigma(1.0),
       threshold(0.0), confidence(0.99), maxIterations(1000), exactIterations(false),
       randomGeneratorState(0), refine(true), refineIterations(20), useEstimatedNoise(true),
       alpha(0.05), entropyThreshold(1.27), inlierRatioFactor(0.9), priorInlierRatio(0.0),
       consistencyDof(1), sampleFitIterations(5), sampleLeverage(false),
-      earlyTerminationEntropy(0.0), localOptimization(false), degeneracyTest(true),
-      ambiguityMargin(0.0), maxRotationStdDeg(0.0), maxTranslationStdDeg(0.0), isParallel(false),
+      earlyTerminationEntropy(0.0), localOptimization(true), degeneracyTest(true),
+      ambiguityMargin(2.0), maxRotationStdDeg(2.0), maxTranslationStdDeg(6.0), isParallel(false),
       timeBudget(0.0)
 {
 }
@@ -42,6 +42,18 @@ Params::Params(const UsacParams& usac) : Params()
 Params Params::fromUsacParams(const UsacParams& usacParams)
 {
     return Params(usacParams);
+}
+
+Params Params::asPublished(Method method)
+{
+    Params p;
+    p.method = method;
+    p.solver = SOLVER_EIGHT_POINT;
+    p.localOptimization = false;
+    p.ambiguityMargin = 0.0;
+    p.maxRotationStdDeg = 0.0;
+    p.maxTranslationStdDeg = 0.0;
+    return p;
 }
 
 Report::Report()

@@ -168,7 +168,9 @@ TEST(Rcme_Degeneracy, planar_scenes_with_k_give_an_accurate_motion)
             const Report r = estimateRelativeMotion(v.points1, v.points2, v.K, params);
             const std::string what = cv::format("method %d, seed %d: %s", static_cast<int>(method),
                                                 seed, r.message.c_str());
-            ASSERT_EQ(r.status, STATUS_SUCCESS) << what;
+            EXPECT_EQ(r.status, STATUS_SUCCESS) << what;
+            if (r.status != STATUS_SUCCESS)
+                continue;
             const MotionError e = compareMotion(r.R, r.t, v.R, v.t);
             EXPECT_LT(e.rotationDeg, 1.0) << what;
             // Measured over these 20 runs: at most 0.3 deg of rotation; translation within 5 deg
@@ -259,7 +261,8 @@ TEST(Rcme_Degeneracy, without_the_test_the_same_scenes_give_a_model)
     for (Degeneracy kind : {Degeneracy::Plane, Degeneracy::PureRotation})
         for (int seed = 0; seed < testRuns(4, 1); ++seed) {
             const TwoViews v = degenerateScene(kind, seed);
-            Params params;
+            // without the ambiguity and uncertainty tests, which flag these scenes too
+            Params params = Params::asPublished(METHOD_STANDARD);
             params.randomGeneratorState = seed;
             params.degeneracyTest = false;
             successes +=

@@ -452,7 +452,8 @@ TEST(Rcme_Baselines, prosac_uses_a_good_ranking)
         RNG rng(seed + 7);
         for (int i = 0; i < quality.rows; ++i)
             quality.at<double>(i) = s.inlierMask.at<uchar>(i) + rng.uniform(0.0, 0.9);
-        Params params = rcmeParams(seed, METHOD_STANDARD);
+        Params params = Params::asPublished(METHOD_STANDARD); // the 8-point sample above
+        params.randomGeneratorState = seed;
         params.exactIterations = true;
         params.maxIterations = 30;
         uniformSuccesses +=

@@ -45,7 +45,10 @@ EstimatorComponents createEstimator(const Params& params, const TwoViewData& dat
     // The methods that propagate uncertainty need a motion per hypothesis when K is known (its
     // covariance lives in the motion's tangent space); Standard scores rank-2 F and makes the
     // motion from the selected model.
-    switch (params.solver) {
+    MinimalSolverKind solver = params.solver;
+    if (solver == SOLVER_AUTO)
+        solver = data.calibrated ? SOLVER_FIVE_POINT : SOLVER_EIGHT_POINT;
+    switch (solver) {
     case SOLVER_FIVE_POINT:
         if (!data.calibrated)
             CV_Error(Error::StsBadArg,

@@ -332,6 +332,12 @@ namespace {
 // ORB-SLAM's ambiguity ratio (Mur-Artal et al. 2015, homography reconstruction): a second
 // motion with at least this share of the best one's support is not ruled out by cheirality.
 constexpr double kAmbiguousSupportRatio = 0.75;
+// ... and whose cost (planarFit, in sigma^2) is within this of the best one's: twice a
+// log-likelihood ratio of 10 is odds of about 150:1. The two motions of a homography's
+// decomposition fit a plane's points about equally; a 5-point E refitted on a plane can stop in a
+// shallow basin nearby (16 deg of translation away, 40 sigma^2 worse, on a test's scene), which
+// support alone did not tell from a real ambiguity.
+constexpr double kAmbiguousCostGap = 10.0;
 
 // Points within the threshold of the model's F (`within`); how many of them lie in front of both
 // cameras (support); and the truncated cost of MSAC with cheirality: a point's squared Sampson
@@ -404,9 +410,11 @@ void resolvePlanarMotion(const TwoViewData& data, EstimatorComponents& c, const 
         if (fits[m].cost < fits[best].cost)
             best = m;
     }
+    const double sigmaSquared = data.sigma * data.sigma;
     for (size_t m = 0; m < motions.size(); ++m) {
         const bool distinct = areDistinctMotions(motions[m], motions[best]);
-        if (distinct && fits[m].support >= kAmbiguousSupportRatio * fits[best].support) {
+        if (distinct && fits[m].support >= kAmbiguousSupportRatio * fits[best].support &&
+            fits[m].cost - fits[best].cost < kAmbiguousCostGap * sigmaSquared) {
             rejectModel(result, STATUS_DEGENERATE_CONFIGURATION,
                         "a homography explains the inliers (planar scene) and two of its motions "
                         "put them in front of both cameras: the motion is not determined",
@@ -470,16 +478,23 @@ void resolveRivalMotions(const TwoViewData& data, EstimatorComponents& c, Ransac
         return;
     // The cost is MSAC's, without the planar test's cheirality term: the depth sign of far
     // points flips with the noise, and counting them as outliers handed small-baseline corridors
-    // to mirrored rivals. Each motion's decomposition was already chosen by cheirality.
+    // to mirrored rivals. The four motions of one E share that cost, so a refitted rival's
+    // decomposition is chosen again by cheirality on all the points of its band, as the selected
+    // model's was: a rival whose sample's few points chose -t (forward motion, far points: on
+    // KITTI every rival within the margin was the selected motion with t reversed) is then the
+    // selected motion again, not an ambiguity.
     std::vector<Model> motions{result.model};
     std::vector<double> costs{truncatedCost(data, result.model.F)};
+    std::vector<uchar> within, inFront;
     for (const RivalMotions::Rival& rival : result.rivals) {
         if (rival.score.inlierCount < kSupportShare * result.score.inlierCount ||
             !areDistinctMotions(rival.model, result.model))
             continue;
         Model refitted = rival.model;
-        if (refitOnOwnPoints(data, refitted).support > 0 &&
-            areDistinctMotions(refitted, result.model)) {
+        if (refitOnOwnPoints(data, refitted).support <= 0)
+            continue;
+        planarFit(data, refitted, within, inFront);
+        if (recoverMotion(data, within, refitted) && areDistinctMotions(refitted, result.model)) {
             motions.push_back(refitted);
             costs.push_back(truncatedCost(data, refitted.F));
         }

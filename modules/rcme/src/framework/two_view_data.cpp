@@ -132,7 +132,7 @@ void validateParams(const Params& p)
         CV_Error(Error::StsBadArg,
                  cv::format("Params.sampler: unknown value %d", static_cast<int>(p.sampler)));
     if (p.solver != SOLVER_EIGHT_POINT && p.solver != SOLVER_SEVEN_POINT &&
-        p.solver != SOLVER_FIVE_POINT)
+        p.solver != SOLVER_FIVE_POINT && p.solver != SOLVER_AUTO)
         CV_Error(Error::StsBadArg,
                  cv::format("Params.solver: unknown value %d", static_cast<int>(p.solver)));
     checkRange(std::isfinite(p.sigma) && p.sigma > 0, "Params.sigma must be positive and finite");

@@ -671,6 +671,7 @@ PYBIND11_MODULE(_rcme, m)
     m.attr("SOLVER_EIGHT_POINT") = static_cast<int>(SOLVER_EIGHT_POINT);
     m.attr("SOLVER_SEVEN_POINT") = static_cast<int>(SOLVER_SEVEN_POINT);
     m.attr("SOLVER_FIVE_POINT") = static_cast<int>(SOLVER_FIVE_POINT);
+    m.attr("SOLVER_AUTO") = static_cast<int>(SOLVER_AUTO);
     m.attr("STATUS_SUCCESS") = static_cast<int>(STATUS_SUCCESS);
     m.attr("STATUS_POOR_QUALITY_INPUT") = static_cast<int>(STATUS_POOR_QUALITY_INPUT);
     m.attr("STATUS_NOT_ENOUGH_POINTS") = static_cast<int>(STATUS_NOT_ENOUGH_POINTS);
@@ -693,10 +694,20 @@ PYBIND11_MODULE(_rcme, m)
         "threshold, isParallel and sampler carried over from a cv2.UsacParams.";
     params.def_static("fromUsacParams", &paramsFromUsac, py::arg("usacParams"), docFromUsac);
     m.def("Params_fromUsacParams", &paramsFromUsac, py::arg("usacParams"), docFromUsac);
+    const char* docAsPublished =
+        "asPublished(method) -> retval\n"
+        ".   The paper's configuration of method: 8-point solver, no local optimisation, no "
+        "ambiguity or uncertainty test.";
+    const auto asPublished = [](int method) {
+        return Params::asPublished(static_cast<Method>(method));
+    };
+    params.def_static("asPublished", asPublished, py::arg("method"), docAsPublished);
+    m.def("Params_asPublished", asPublished, py::arg("method"), docAsPublished);
     Fields<Params> paramsFields(params);
     paramsFields.enumInt("method", &Params::method, "METHOD_*; default METHOD_STANDARD")
         .enumInt("sampler", &Params::sampler, "SAMPLER_*; default SAMPLER_UNIFORM")
-        .enumInt("solver", &Params::solver, "SOLVER_*; default SOLVER_EIGHT_POINT")
+        .enumInt("solver", &Params::solver,
+                 "SOLVER_*; default SOLVER_AUTO (5-point with K, else 8-point)")
         .plain("sigma", &Params::sigma, "noise standard deviation, pixels; default 1")
         .plain("threshold", &Params::threshold, "Sampson threshold, pixels; <= 0: 1.96 sigma")
         .plain("confidence", &Params::confidence, "default 0.99")
@@ -719,16 +730,17 @@ PYBIND11_MODULE(_rcme, m)
         .plain("earlyTerminationEntropy", &Params::earlyTerminationEntropy,
                "RCME: stop once a candidate's mean excess entropy is at most this; <= 0 off")
         .plain("localOptimization", &Params::localOptimization,
-               "refit new candidates on their inliers (LO-RANSAC); default False")
+               "refit new candidates on their inliers (LO-RANSAC); default True")
         .plain("degeneracyTest", &Params::degeneracyTest,
                "final inliers fit a homography as well as F -> degenerate status; default True")
         .plain("ambiguityMargin", &Params::ambiguityMargin,
-               "a distinct motion within this many sigma^2 of cost -> undetermined; <= 0 "
-               "(default): off")
+               "a distinct motion within this many sigma^2 of cost -> undetermined; default 2; "
+               "<= 0: off")
         .plain("maxRotationStdDeg", &Params::maxRotationStdDeg,
-               "rotation std above this (degrees) -> undetermined; <= 0 (default): off")
+               "rotation std above this (degrees) -> undetermined; default 2; <= 0: off")
         .plain("maxTranslationStdDeg", &Params::maxTranslationStdDeg,
-               "translation direction std above this (degrees) -> undetermined; <= 0: off")
+               "translation direction std above this (degrees) -> undetermined; default 6; "
+               "<= 0: off")
         .mat("matchQuality", &Params::matchQuality,
              "SAMPLER_PROSAC: one score per correspondence, higher is better; None: sorted")
         .plain("isParallel", &Params::isParallel,

@@ -157,6 +157,7 @@ class _RcmeSuite:
             "METHOD_MLESAC": 1027, "METHOD_COV_RANSAC": 1028,
             "SAMPLER_UNIFORM": 0, "SAMPLER_PROSAC": 1,
             "SOLVER_EIGHT_POINT": 0, "SOLVER_SEVEN_POINT": 1, "SOLVER_FIVE_POINT": 2,
+            "SOLVER_AUTO": 3,
             "STATUS_SUCCESS": 0, "STATUS_POOR_QUALITY_INPUT": 1, "STATUS_NOT_ENOUGH_POINTS": 2,
             "STATUS_DEGENERATE_CONFIGURATION": 3, "STATUS_PURE_ROTATION": 4,
             "SCENE_CORRIDOR": 0, "SCENE_GENERIC": 1, "SCENE_PLANE": 2, "SCENE_PURE_ROTATION": 3,
@@ -170,7 +171,7 @@ class _RcmeSuite:
         p = b.Params()
         self.assertEqual(p.method, b.METHOD_STANDARD)
         self.assertEqual(p.sampler, b.SAMPLER_UNIFORM)
-        self.assertEqual(p.solver, b.SOLVER_EIGHT_POINT)
+        self.assertEqual(p.solver, b.SOLVER_AUTO)
         for name in ("method", "sampler", "solver"):
             self.assertIs(type(getattr(p, name)), int, name)
         self.assertEqual(p.sigma, 1.0)
@@ -189,6 +190,20 @@ class _RcmeSuite:
         self.assertTrue(0.5 <= p.inlierRatioFactor <= 1.0)
         self.assertTrue(np.isfinite(p.entropyThreshold))
         self.assertIs(p.isParallel, False)
+        self.assertIs(p.localOptimization, True)
+        self.assertEqual((p.ambiguityMargin, p.maxRotationStdDeg, p.maxTranslationStdDeg),
+                         (2.0, 2.0, 6.0))
+
+    def test_params_as_published(self):
+        b = self.b
+        as_published = getattr(b.Params, "asPublished", None) or b.Params_asPublished
+        p = as_published(b.METHOD_RCME)
+        self.assertEqual(p.method, b.METHOD_RCME)
+        self.assertEqual(p.solver, b.SOLVER_EIGHT_POINT)
+        self.assertIs(p.localOptimization, False)
+        self.assertEqual((p.ambiguityMargin, p.maxRotationStdDeg, p.maxTranslationStdDeg),
+                         (0.0, 0.0, 0.0))
+        self.assertEqual(p.maxIterations, b.Params().maxIterations)  # the rest: the defaults
 
     def test_params_attribute_round_trip(self):
         b = self.b
@@ -626,8 +641,11 @@ class _RcmeSuite:
                     self.assertIsNone(rep.E, name)
                     self.assertEqual(rep.covariance.shape, (3, 3))
                     self.assertRotation(rep.rejectedR)  # the motion it turned down
-            # switched off, the same input gives a (non-unique) model
-            rep = b.estimateRelativeMotion(p1, p2, K, self.make_params(degeneracyTest=False))
+            # switched off (with the ambiguity and uncertainty tests, which flag these scenes
+            # too), the same input gives a (non-unique) model
+            rep = b.estimateRelativeMotion(p1, p2, K, self.make_params(
+                degeneracyTest=False, ambiguityMargin=0.0, maxRotationStdDeg=0.0,
+                maxTranslationStdDeg=0.0))
             self.assertEqual(rep.status, b.STATUS_SUCCESS, name)
         # a scene with depth and translation is not flagged
         p1 = project(in_depth, np.eye(3), np.zeros(3)) + rng.normal(0, 0.5, (n, 2))
