@@ -13,6 +13,10 @@ try:
     import rcme
 except ImportError:  # built inside OpenCV
     rcme = cv2.rcme
+try:  # a peer, only in the venv of with_poselib.sh: never a dependency of the module
+    import poselib
+except ImportError:
+    poselib = None
 
 CHI2_1_95 = 3.841458820694124  # chi2_1^-1(0.95): threshold = sigma * sqrt(.) = 1.96 sigma
 # Confidence ~1 keeps OpenCV's adaptive iteration bound at maxIters.
@@ -177,6 +181,38 @@ def _run_opencv_e(flag):
     return run
 
 
+def _skew(v):
+    return np.array([[0, -v[2], v[1]], [v[2], 0, -v[0]], [-v[1], v[0], 0]])
+
+
+def _run_poselib():
+    """PoseLib's relative pose (5-point RANSAC with LO and a final bundle adjustment) with K:
+    the same pixel threshold on its epipolar (Sampson) error, N as min and max iterations when
+    exact, PoseLib's own adaptive bound at DEFAULT_CONFIDENCE otherwise."""
+    def run(p1, p2, K, budget):
+        if K is None:
+            return None  # needs a camera matrix
+        camera = {"model": "PINHOLE", "width": int(round(2 * K[0, 2])),
+                  "height": int(round(2 * K[1, 2])),
+                  "params": [K[0, 0], K[1, 1], K[0, 2], K[1, 2]]}
+        options = {"max_iterations": budget.iterations, "max_epipolar_error": budget.threshold,
+                   "seed": budget.seed,
+                   "min_iterations": min(100, budget.iterations) if budget.adaptive
+                   else budget.iterations,
+                   "success_prob": DEFAULT_CONFIDENCE if budget.adaptive else 1.0 - 1e-12}
+        start = time.perf_counter()
+        pose, info = poselib.estimate_relative_pose(p1, p2, camera, camera, options, {})
+        seconds = time.perf_counter() - start
+        mask = np.asarray(info["inliers"], bool)
+        if info["num_inliers"] < 5:
+            return Estimate(False, NO_MODEL, mask=np.zeros(len(p1), bool), seconds=seconds)
+        R, t = np.asarray(pose.R), np.asarray(pose.t).reshape(3, 1)
+        Kinv = np.linalg.inv(K)
+        F = Kinv.T @ _skew(t.ravel()) @ R @ Kinv
+        return Estimate(True, "ok", _normalized(F), R, t, mask, seconds)
+    return run
+
+
 # Display names of rcme's methods in the paper's spelling; a method the module gains later is
 # still benchmarked, under its constant's name (METHOD_FOO_BAR -> "FOO_BAR").
 RCME_DISPLAY_NAMES = {"METHOD_RCME": "RCME", "METHOD_PRCME": "pRCME",
@@ -205,7 +241,11 @@ METHODS.update({
     "cv E RANSAC": (_run_opencv_e(cv2.RANSAC), True),
     "cv E USAC_MAGSAC": (_run_opencv_e(cv2.USAC_MAGSAC), False),
 })
-OPENCV_METHODS = [m for m in METHODS if m.startswith("cv ")]
+if poselib is not None:
+    METHODS["PoseLib relpose"] = (_run_poselib(), True)
+# The peers: no status, and no seed (OpenCV 4.6 ignores cv2.setRNGSeed; PoseLib's seed is
+# taken, but the peers run once per pair and N).
+PEER_METHODS = [m for m in METHODS if m.startswith("cv ") or m.startswith("PoseLib")]
 
 
 def run(name, p1, p2, K, budget):

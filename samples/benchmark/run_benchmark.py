@@ -133,10 +133,11 @@ def corridor_pairs(args):
 def run_all(task_pairs, iterations, seeds, sigma, label):
     """Every method on every pair, N and seed. OpenCV 4.6's estimators take no seed (they
     ignore cv2.setRNGSeed and draw the same samples on every call), so they run once per pair
-    and N; their rates are the same as over every seed."""
+    and N; their rates are the same as over every seed. PoseLib (when installed, see
+    with_poselib.sh) runs once per pair and N too, with seed 0."""
     tasks = [(pair, N, seed, method) for pair in task_pairs for N in iterations
              for seed in range(seeds) for method in methods.METHODS
-             if seed == 0 or method not in methods.OPENCV_METHODS]
+             if seed == 0 or method not in methods.PEER_METHODS]
     progress, rows = Progress(len(tasks), label), []
     for pair, N, seed, method in tasks:
         budget = methods.Budget(N, pair.sigma if pair.sigma is not None else sigma, seed)
@@ -288,8 +289,10 @@ def confusion_section(run, names, real_datasets, N_max):
 
 
 DEFAULT_SETTINGS_N = 1000
-DEFAULT_SETTINGS_METHODS = [methods.DEFAULT_METHOD, "RCME", "Standard", "cv USAC_DEFAULT",
-                            "cv USAC_ACCURATE", "cv E USAC_MAGSAC"]
+DEFAULT_SETTINGS_METHODS = [m for m in [methods.DEFAULT_METHOD, "RCME", "Standard",
+                                         "cv USAC_DEFAULT", "cv USAC_ACCURATE",
+                                         "cv E USAC_MAGSAC", "PoseLib relpose"]
+                            if m in methods.METHODS]
 
 
 def run_defaults(task_pairs, sigma):

@@ -1,0 +1,20 @@
+#!/usr/bin/env bash
+# Runs the benchmark with PoseLib (https://github.com/PoseLib/PoseLib, `poselib` from PyPI) as a
+# peer, in a venv this script creates: PoseLib is a benchmark-only tool, never a dependency of
+# the module. The venv sees Debian's packages (--system-site-packages: NumPy, python3-opencv)
+# and the built module through PYTHONPATH; the arguments go to run_benchmark.py.
+#
+#   samples/benchmark/with_poselib.sh [run_benchmark.py arguments]
+# Environment: BUILD_DIR (default build), POSELIB_VENV (default $BUILD_DIR/poselib-venv),
+# POSELIB_VERSION (default 2.0.5, the version measured in doc/results.md).
+set -euo pipefail
+cd "$(dirname "$0")/../.."
+build_dir=${BUILD_DIR:-build}
+venv=${POSELIB_VENV:-$build_dir/poselib-venv}
+version=${POSELIB_VERSION:-2.0.5}
+if ! "$venv/bin/python" -c "import poselib" 2>/dev/null; then
+    /usr/bin/python3 -m venv --system-site-packages "$venv"
+    "$venv/bin/pip" install --quiet "poselib==$version"
+fi
+PYTHONPATH="$build_dir/python${PYTHONPATH:+:$PYTHONPATH}" \
+    "$venv/bin/python" samples/benchmark/run_benchmark.py "$@"
