@@ -368,8 +368,9 @@ def check(args, rows_real, path, png, bound):
 
 def main(argv=None):
     args = parse_args(sys.argv[1:] if argv is None else argv)
-    command = "PYTHONPATH=build/python /usr/bin/python3 samples/benchmark/run_benchmark.py " + \
-        " ".join(sys.argv[1:] if argv is None else argv)
+    runner = ("samples/benchmark/with_poselib.sh " if methods.poselib is not None
+              else "PYTHONPATH=build/python /usr/bin/python3 samples/benchmark/run_benchmark.py ")
+    command = runner + " ".join(sys.argv[1:] if argv is None else argv)
     start = time.time()
     # the record of the run, so that --report-only can redraw the report without rerunning
     record_path = os.path.join(args.cache, "run_%s.json" % ("quick" if args.quick else "full"))
