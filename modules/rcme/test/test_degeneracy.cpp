@@ -39,28 +39,13 @@ TwoViews degenerateScene(Degeneracy kind, int seed)
     views.K = Mat(K);
     views.R = Mat(R);
     views.t = Mat(t);
-    std::vector<Point2d> p1, p2;
-    while (static_cast<int>(p1.size()) < kPoints / 2) {
-        const Vec3d ray = K.inv() * Vec3d(rng.uniform(0.0, 640.0), rng.uniform(0.0, 480.0), 1.0);
-        const double depth = kind == Degeneracy::Plane ? planeDistance / ray.dot(planeNormal)
-                                                       : rng.uniform(4.0, 20.0);
-        const Vec3d X2 = R * (ray * depth) + t;
-        if (X2[2] <= 0)
-            continue;
-        const Vec3d x2 = K * X2;
-        const Point2d q(x2[0] / x2[2] + rng.gaussian(1.0), x2[1] / x2[2] + rng.gaussian(1.0));
-        if (q.x < 0 || q.x >= 640 || q.y < 0 || q.y >= 480)
-            continue;
-        const Vec3d x1 = K * ray;
-        p1.emplace_back(x1[0] + rng.gaussian(1.0), x1[1] + rng.gaussian(1.0));
-        p2.push_back(q);
-    }
-    while (static_cast<int>(p1.size()) < kPoints) {
-        p1.emplace_back(rng.uniform(0.0, 640.0), rng.uniform(0.0, 480.0));
-        p2.emplace_back(rng.uniform(0.0, 640.0), rng.uniform(0.0, 480.0));
-    }
-    Mat(p1).reshape(1).copyTo(views.points1);
-    Mat(p2).reshape(1).copyTo(views.points2);
+    projectTwoViews(
+        rng, K, R, t, Size(640, 480), 1.0, kPoints / 2, kPoints,
+        [&](const Vec3d& ray) {
+            return kind == Degeneracy::Plane ? planeDistance / ray.dot(planeNormal)
+                                             : rng.uniform(4.0, 20.0);
+        },
+        views.points1, views.points2);
     return views;
 }
 

@@ -109,26 +109,11 @@ SyntheticScene forwardMotionScene(int seed)
     Rodrigues(Vec3d(rng.uniform(-0.01, 0.01), rng.uniform(-0.02, 0.02), 0.0), R);
     const Vec3d t = normalize(Vec3d(rng.uniform(-0.05, 0.05), rng.uniform(-0.02, 0.02), -1.0));
     constexpr int kPoints = 1000, kInliers = 800;
-    std::vector<Point2d> p1, p2;
-    while (static_cast<int>(p1.size()) < kInliers) {
-        const Vec3d ray = K.inv() * Vec3d(rng.uniform(0.0, 1200.0), rng.uniform(0.0, 360.0), 1.0);
-        const Vec3d X1 = ray * (8.0 / rng.uniform(0.005, 0.3)); // 27-1600 m
-        const Vec3d X2 = R * X1 + t;
-        const Vec3d x2 = K * X2;
-        const Point2d q(x2[0] / x2[2] + rng.gaussian(0.5), x2[1] / x2[2] + rng.gaussian(0.5));
-        if (X2[2] <= 0 || q.x < 0 || q.x >= 1200 || q.y < 0 || q.y >= 360)
-            continue;
-        const Vec3d x1 = K * ray;
-        p1.emplace_back(x1[0] + rng.gaussian(0.5), x1[1] + rng.gaussian(0.5));
-        p2.push_back(q);
-    }
-    while (static_cast<int>(p1.size()) < kPoints) {
-        p1.emplace_back(rng.uniform(0.0, 1200.0), rng.uniform(0.0, 360.0));
-        p2.emplace_back(rng.uniform(0.0, 1200.0), rng.uniform(0.0, 360.0));
-    }
     SyntheticScene s;
-    Mat(p1).reshape(1).copyTo(s.points1);
-    Mat(p2).reshape(1).copyTo(s.points2);
+    projectTwoViews(
+        rng, K, R, t, Size(1200, 360), 0.5, kInliers, kPoints,
+        [&](const Vec3d&) { return 8.0 / rng.uniform(0.005, 0.3); }, // 27-1600 m
+        s.points1, s.points2);
     s.cameraMatrix = Mat(K);
     s.R = Mat(R);
     s.t = Mat(t);

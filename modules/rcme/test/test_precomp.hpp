@@ -64,6 +64,40 @@ inline SyntheticScene testScene(SceneKind kind, int seed, double inlierRatio = 0
     return generateScene(testSceneParams(kind, seed, inlierRatio, sigma, numPoints));
 }
 
+/** Hand-built two views: `inliers` correspondences of points seen by K [I | 0] and K [R | t],
+the rays through pixels drawn uniformly over the image, each at the depth depthOfRay(ray)
+gives, with Gaussian noise of `sigma` px (points behind the second camera or outside its image
+are drawn again); then uniform outliers up to `total`. points1, points2: Nx2 CV_64F. */
+template <class DepthOfRay>
+void projectTwoViews(RNG& rng, const Matx33d& K, const Matx33d& R, const Vec3d& t, Size image,
+                     double sigma, int inliers, int total, DepthOfRay depthOfRay, Mat& points1,
+                     Mat& points2)
+{
+    std::vector<Point2d> p1, p2;
+    while (static_cast<int>(p1.size()) < inliers) {
+        const Vec3d ray = K.inv() * Vec3d(rng.uniform(0.0, double(image.width)),
+                                          rng.uniform(0.0, double(image.height)), 1.0);
+        const Vec3d X2 = R * (ray * depthOfRay(ray)) + t;
+        if (X2[2] <= 0)
+            continue;
+        const Vec3d x2 = K * X2;
+        const Point2d q(x2[0] / x2[2] + rng.gaussian(sigma), x2[1] / x2[2] + rng.gaussian(sigma));
+        if (q.x < 0 || q.x >= image.width || q.y < 0 || q.y >= image.height)
+            continue;
+        const Vec3d x1 = K * ray;
+        p1.emplace_back(x1[0] + rng.gaussian(sigma), x1[1] + rng.gaussian(sigma));
+        p2.push_back(q);
+    }
+    while (static_cast<int>(p1.size()) < total) {
+        p1.emplace_back(rng.uniform(0.0, double(image.width)),
+                        rng.uniform(0.0, double(image.height)));
+        p2.emplace_back(rng.uniform(0.0, double(image.width)),
+                        rng.uniform(0.0, double(image.height)));
+    }
+    Mat(p1).reshape(1).copyTo(points1);
+    Mat(p2).reshape(1).copyTo(points2);
+}
+
 //! The well-conditioned generic scene, shared by the tests that need one.
 inline SyntheticScene genericTestScene(int seed, double inlierRatio = 0.5, int numPoints = 500)
 {
