@@ -66,7 +66,8 @@ enum Flag : uint8_t
     FLAG_LOCAL_OPTIMIZATION = 1 << 2,
     FLAG_SAMPLE_LEVERAGE = 1 << 3,
     FLAG_SECOND_VIEW_IS_FIRST = 1 << 4, //!< points2 = points1 (no motion at all)
-    FLAG_K_SINGLE_PRECISION = 1 << 5
+    FLAG_K_SINGLE_PRECISION = 1 << 5,
+    FLAG_NO_MOTION_TESTS = 1 << 6 //!< the ambiguity and uncertainty tests off (on by default)
 };
 
 //! One fuzz input, decoded. Small fields are raw bytes that fuzz_public_api.cpp maps to valid

@@ -83,6 +83,8 @@ Params makeParams(const FuzzCase& c, const Mat& quality)
     p.sampleLeverage = c.flags & rcme_fuzz::FLAG_SAMPLE_LEVERAGE;
     p.earlyTerminationEntropy = c.earlyTerminationEntropy;
     p.localOptimization = c.flags & rcme_fuzz::FLAG_LOCAL_OPTIMIZATION;
+    if (c.flags & rcme_fuzz::FLAG_NO_MOTION_TESTS)
+        p.ambiguityMargin = p.maxRotationStdDeg = p.maxTranslationStdDeg = 0.0;
     // A tiny budget now and then: the loop must stop early and still keep the output contract.
     p.timeBudget = (c.refineIterations & 0x80) ? 1e-4 : 0.0;
     p.matchQuality = quality;
