@@ -59,6 +59,46 @@ TEST(Rcme_Standard, recovers_pose_on_well_conditioned_scenes)
     EXPECT_LE(failures, 5);
 }
 
+// SOLVER_AUTO is the 5-point solver with K and the 8-point one without: the same seed gives the
+// same estimate as naming that solver, and a different one from the other solver.
+TEST(Rcme_Standard, auto_solver_is_five_point_with_k_and_eight_point_without)
+{
+    const SyntheticScene s = genericTestScene(3);
+    Params automatic;
+    ASSERT_EQ(automatic.solver, SOLVER_AUTO);
+    const auto estimate = [&](MinimalSolverKind solver, bool withK) {
+        Params p = automatic;
+        p.solver = solver;
+        return estimateRelativeMotion(s.points1, s.points2, withK ? s.cameraMatrix : Mat(), p);
+    };
+    for (bool withK : {true, false}) {
+        SCOPED_TRACE(withK ? "with K" : "without K");
+        const Report a = estimate(SOLVER_AUTO, withK);
+        const Report same = estimate(withK ? SOLVER_FIVE_POINT : SOLVER_EIGHT_POINT, withK);
+        const Report other = estimate(withK ? SOLVER_EIGHT_POINT : SOLVER_SEVEN_POINT, withK);
+        ASSERT_EQ(a.status, STATUS_SUCCESS) << a.message;
+        EXPECT_EQ(cv::norm(a.F, same.F, NORM_INF), 0.0);
+        EXPECT_EQ(countNonZero(a.mask != same.mask), 0);
+        EXPECT_GT(cv::norm(a.F, other.F, NORM_INF), 0.0);
+    }
+}
+
+TEST(Rcme_Standard, as_published_is_the_paper_configuration)
+{
+    const Params p = Params::asPublished(METHOD_RCME);
+    EXPECT_EQ(p.method, METHOD_RCME);
+    EXPECT_EQ(p.solver, SOLVER_EIGHT_POINT);
+    EXPECT_FALSE(p.localOptimization);
+    EXPECT_EQ(p.ambiguityMargin, 0.0);
+    EXPECT_EQ(p.maxRotationStdDeg, 0.0);
+    EXPECT_EQ(p.maxTranslationStdDeg, 0.0);
+    const Params defaults;
+    EXPECT_TRUE(defaults.localOptimization);
+    EXPECT_GT(defaults.ambiguityMargin, 0.0);
+    EXPECT_EQ(p.maxIterations, defaults.maxIterations); // the rest: the defaults
+    EXPECT_EQ(p.sigma, defaults.sigma);
+}
+
 TEST(Rcme_Standard, recover_pose_follows_opencv_conventions)
 {
     const SyntheticScene scene = genericTestScene(3);

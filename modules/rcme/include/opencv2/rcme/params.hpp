@@ -190,7 +190,8 @@ struct CV_EXPORTS_W_SIMPLE Params
     determined and the status is #STATUS_DEGENERATE_CONFIGURATION; with one, a rotation that
     explains them as well as a motion gives #STATUS_PURE_ROTATION, and otherwise the motion of
     the plane is taken from E or from the homography's decomposition, whichever puts the most
-    inliers in front of both cameras (degenerate when two motions do). Default true. */
+    inliers in front of both cameras (degenerate when two motions do and fit them within 10
+    sigma^2 of cost). Default true. */
     CV_PROP_RW bool degeneracyTest;
     /** The ambiguity test, with a camera matrix: the loop remembers the best hypothesis of each
     distinct motion it saw; after it, those with at least half the selected model's support are
