@@ -10,6 +10,7 @@
 
 #include "framework/components.hpp"
 #include "geometry/epipolar.hpp"
+#include "solvers/fundamental_eight_point.hpp"
 
 namespace cv {
 namespace rcme {
@@ -36,30 +37,22 @@ public:
                  std::vector<Model>& models) override
     {
         models.clear();
+        if (sample.size() != 8)
+            return 0;
         Eigen::Matrix3d T1, T2;
         if (!normalizingTransform(data.points1, sample, T1) ||
             !normalizingTransform(data.points2, sample, T2))
             return 0;
 
-        // x2^T F x1 = 0 as a row of A times the row-major entries of F.
-        Eigen::Matrix<double, 9, 9> AtA = Eigen::Matrix<double, 9, 9>::Zero();
-        for (int i : sample) {
-            const Eigen::Vector3d a = T1 * homogeneous(data.points1[static_cast<size_t>(i)]);
-            const Eigen::Vector3d b = T2 * homogeneous(data.points2[static_cast<size_t>(i)]);
-            Eigen::Matrix<double, 9, 1> row;
-            row << b.x() * a, b.y() * a, a;
-            AtA.selfadjointView<Eigen::Lower>().rankUpdate(row);
+        Eigen::Vector3d x1[8], x2[8];
+        for (int k = 0; k < 8; ++k) {
+            const size_t i = static_cast<size_t>(sample[static_cast<size_t>(k)]);
+            x1[k] = T1 * homogeneous(data.points1[i]);
+            x2[k] = T2 * homogeneous(data.points2[i]);
         }
-        AtA = AtA.selfadjointView<Eigen::Lower>();
-        Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 9, 9>> eig(AtA);
-        const Eigen::Matrix<double, 9, 1> values = eig.eigenvalues();
-        // A second (near) null direction means the sample does not determine F: coincident,
-        // collinear or otherwise degenerate points.
-        if (!(values(1) > 1e-10 * values(8)))
-            return 0;
-        const Eigen::Matrix<double, 9, 1> f = eig.eigenvectors().col(0);
         Eigen::Matrix3d Fn;
-        Fn << f(0), f(1), f(2), f(3), f(4), f(5), f(6), f(7), f(8);
+        if (!fundamentalFromEightPoints(x1, x2, Fn))
+            return 0;
 
         Model model;
         if (data.calibrated && essentialHypotheses_) {

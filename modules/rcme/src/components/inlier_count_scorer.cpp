@@ -7,7 +7,7 @@
 // quality input" instead of an 8-point fit to noise.
 
 #include "framework/components.hpp"
-#include "geometry/epipolar.hpp"
+#include "geometry/sampson_band.hpp"
 #include "geometry/statistics.hpp"
 
 namespace cv {
@@ -27,10 +27,8 @@ public:
 
     Score evaluate(const TwoViewData& data, const Model& model) override
     {
-        int count = 0;
-        for (size_t i = 0; i < data.points1.size(); ++i)
-            count += sampsonDistanceSquared(model.F, data.points1[i], data.points2[i]) <=
-                     thresholdSquared_;
+        const int count =
+            countInSampsonBand(model.F, data.points1, data.points2, thresholdSquared_);
         Score score;
         score.inlierCount = count;
         score.value = -count;
@@ -41,9 +39,7 @@ public:
     void classify(const TwoViewData& data, const Model& model, std::vector<uchar>& mask) override
     {
         mask.resize(data.points1.size());
-        for (size_t i = 0; i < mask.size(); ++i)
-            mask[i] = sampsonDistanceSquared(model.F, data.points1[i], data.points2[i]) <=
-                      thresholdSquared_;
+        countInSampsonBand(model.F, data.points1, data.points2, thresholdSquared_, mask.data());
     }
 
     std::unique_ptr<Scorer> clone() const override

@@ -74,6 +74,24 @@ bool triangulateDepths(const Eigen::Matrix3d& R, const Eigen::Vector3d& t,
 
 } // namespace
 
+bool admitsCommonCheirality(const Eigen::Matrix3d& E, const Eigen::Vector3d* q1,
+                            const Eigen::Vector3d* q2, int count)
+{
+    // t^T E = 0: the largest cross product of two columns of E.
+    Eigen::Vector3d t = E.col(0).cross(E.col(1));
+    for (const Eigen::Vector3d& other :
+         {Eigen::Vector3d(E.col(0).cross(E.col(2))), Eigen::Vector3d(E.col(1).cross(E.col(2)))})
+        if (other.squaredNorm() > t.squaredNorm())
+            t = other;
+    int positive = 0, negative = 0;
+    for (int k = 0; k < count; ++k) {
+        const double s = t.cross(q2[k]).dot(E * q1[k]);
+        positive += s > 0;
+        negative += s < 0;
+    }
+    return positive == 0 || negative == 0;
+}
+
 int countPointsInFront(const Eigen::Matrix3d& R, const Eigen::Vector3d& t,
                        const std::vector<Eigen::Vector2d>& points1,
                        const std::vector<Eigen::Vector2d>& points2, const Eigen::Matrix3d& Kinv,

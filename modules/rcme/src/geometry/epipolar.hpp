@@ -80,6 +80,16 @@ Eigen::Matrix3d essentialFromFundamental(const Eigen::Matrix3d& F, const Eigen::
 //! F = K^-T E K^-1, normalised.
 Eigen::Matrix3d fundamentalFromEssential(const Eigen::Matrix3d& E, const Eigen::Matrix3d& Kinv);
 
+/** False when no decomposition of E can put all `count` correspondences (rays q1[k] <-> q2[k] in
+normalized camera coordinates) in front of both cameras. Under x2 = R x1 + t the depths obey
+d2 (t x q2) = d1 (t x R q1) = d1 E q1, so the sign of (t x q2) . (E q1), t the left null vector of
+E, tells for each point whether its depths agree in sign under one twisted pair of E's
+decompositions or under the other: points that disagree admit no common one. A necessary
+condition only, for a few flops per point and no decomposition: it lets a minimal solver drop
+most of its spurious solutions before they are scored on every point. */
+bool admitsCommonCheirality(const Eigen::Matrix3d& E, const Eigen::Vector3d* q1,
+                            const Eigen::Vector3d* q2, int count);
+
 /** Counts the `selection`ed points (null: all) that triangulate in front of both cameras under
 x2 = R x1 + t, closer than `distanceThreshold` baselines (as cv::recoverPose, whose default is
 50). `inFront` (may be null) receives 1 for those points, 0 for the others. */

@@ -1,0 +1,26 @@
+// This file is part of the rcme module. It is subject to the license terms in the LICENSE file
+// found in the top-level directory of this distribution.
+
+#ifndef OPENCV_RCME_GEOMETRY_SAMPSON_BAND_HPP
+#define OPENCV_RCME_GEOMETRY_SAMPSON_BAND_HPP
+
+#include "precomp.hpp"
+
+namespace cv {
+namespace rcme {
+namespace detail {
+
+/** The number of correspondences within F's band: squared Sampson distance (as
+sampsonDistanceSquared) at most `thresholdSquared`. With `mask`, also writes 1 for them and 0 for
+the others (mask holds points1.size() entries). The inner loop of hypothesis scoring, run on every
+point of every hypothesis: it compares r^2 with thresholdSquared |J|^2 instead of dividing, has no
+branch, and is compiled for AVX2 too where the compiler can pick the variant at load time. */
+int countInSampsonBand(const Eigen::Matrix3d& F, const std::vector<Eigen::Vector2d>& points1,
+                       const std::vector<Eigen::Vector2d>& points2, double thresholdSquared,
+                       uchar* mask = nullptr);
+
+} // namespace detail
+} // namespace rcme
+} // namespace cv
+
+#endif

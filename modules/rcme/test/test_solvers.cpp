@@ -1,0 +1,256 @@
+// This file is part of the rcme module. It is subject to the license terms in the LICENSE file
+// found in the top-level directory of this distribution.
+
+// The pure math under src/solvers/ and the scoring kernel, called directly (no RANSAC state).
+// Internal (cv::rcme::detail), so standalone build only, like test_components.cpp.
+
+#include "test_precomp.hpp"
+
+#ifdef RCME_STANDALONE_TESTS
+
+#include "geometry/epipolar.hpp"
+#include "geometry/sampson_band.hpp"
+#include "solvers/essential_five_point.hpp"
+#include "solvers/homography_four_point.hpp"
+#include "solvers/real_roots.hpp"
+
+#include <Eigen/Eigenvalues>
+
+#include <algorithm>
+
+namespace opencv_test {
+namespace {
+
+using namespace cv::rcme::detail;
+
+//! Coefficients (ascending) of prod (x - roots[k]) times `scale`.
+std::vector<double> fromRoots(const std::vector<double>& roots, double scale = 1.0)
+{
+    std::vector<double> p = {scale};
+    for (double r : roots) {
+        std::vector<double> next(p.size() + 1, 0.0);
+        for (size_t i = 0; i < p.size(); ++i) {
+            next[i + 1] += p[i];
+            next[i] -= r * p[i];
+        }
+        p = next;
+    }
+    return p;
+}
+
+TEST(Rcme_RealRoots, finds_the_roots_of_a_product_of_factors)
+{
+    cv::RNG rng(3);
+    for (int trial = 0; trial < 500; ++trial) {
+        const int degree = 1 + trial % kMaxRootDegree;
+        std::vector<double> roots;
+        for (int k = 0; k < degree; ++k)
+            roots.push_back(rng.uniform(-10.0, 10.0));
+        std::sort(roots.begin(), roots.end());
+        const std::vector<double> p = fromRoots(roots, rng.uniform(0.1, 100.0));
+        double found[kMaxRootDegree];
+        const int count = realRoots(p.data(), degree, found);
+        // Roots closer than 1e-3 are allowed to merge into one.
+        int distinct = 1;
+        for (int k = 1; k < degree; ++k)
+            distinct += roots[size_t(k)] - roots[size_t(k - 1)] > 1e-3;
+        ASSERT_GE(count, distinct) << "trial " << trial;
+        ASSERT_LE(count, degree);
+        for (int k = 0; k < count; ++k) {
+            double nearest = 1e300;
+            for (double r : roots)
+                nearest = std::min(nearest, std::abs(r - found[k]));
+            EXPECT_LT(nearest, 1e-6) << "trial " << trial;
+            if (k > 0)
+                EXPECT_LT(found[k - 1], found[k]) << "increasing order";
+        }
+    }
+}
+
+TEST(Rcme_RealRoots, agrees_with_the_companion_matrix_on_random_polynomials)
+{
+    cv::RNG rng(5);
+    int total = 0;
+    for (int trial = 0; trial < 500; ++trial) {
+        double p[kMaxRootDegree + 1];
+        for (double& c : p)
+            c = rng.gaussian(1.0);
+        Eigen::Matrix<double, kMaxRootDegree, kMaxRootDegree> C;
+        C.setZero();
+        for (int i = 1; i < kMaxRootDegree; ++i)
+            C(i, i - 1) = 1;
+        for (int i = 0; i < kMaxRootDegree; ++i)
+            C(i, kMaxRootDegree - 1) = -p[i] / p[kMaxRootDegree];
+        const Eigen::EigenSolver<decltype(C)> eig(C, false);
+        std::vector<double> expected;
+        for (int i = 0; i < kMaxRootDegree; ++i)
+            if (std::abs(eig.eigenvalues()(i).imag()) < 1e-9)
+                expected.push_back(eig.eigenvalues()(i).real());
+        std::sort(expected.begin(), expected.end());
+        double found[kMaxRootDegree];
+        const int count = realRoots(p, kMaxRootDegree, found);
+        ASSERT_EQ(static_cast<size_t>(count), expected.size()) << "trial " << trial;
+        for (int k = 0; k < count; ++k)
+            EXPECT_NEAR(found[k], expected[size_t(k)], 1e-7 * (1 + std::abs(expected[size_t(k)])));
+        total += count;
+    }
+    EXPECT_GT(total, 500); // random polynomials of degree 10 have real roots
+}
+
+TEST(Rcme_RealRoots, negligible_leading_coefficients_and_no_roots)
+{
+    // (x - 1)(x - 2) with a leading x^3 coefficient at the rounding level.
+    const double p[] = {2.0, -3.0, 1.0, 1e-20};
+    double found[kMaxRootDegree];
+    ASSERT_EQ(realRoots(p, 3, found), 2);
+    EXPECT_NEAR(found[0], 1.0, 1e-12);
+    EXPECT_NEAR(found[1], 2.0, 1e-12);
+    const double positive[] = {1.0, 0.0, 1.0}; // x^2 + 1
+    EXPECT_EQ(realRoots(positive, 2, found), 0);
+    const double constant[] = {1.0, 0.0};
+    EXPECT_EQ(realRoots(constant, 1, found), 0);
+    const double notFinite[] = {1.0, std::numeric_limits<double>::quiet_NaN()};
+    EXPECT_EQ(realRoots(notFinite, 1, found), 0);
+    const double doubleRoot[] = {1.0, -2.0, 1.0}; // (x - 1)^2
+    ASSERT_EQ(realRoots(doubleRoot, 2, found), 1);
+    EXPECT_NEAR(found[0], 1.0, 1e-7);
+}
+
+//! A random motion and five points in front of both cameras, as rays.
+void randomProblem(cv::RNG& rng, Eigen::Matrix3d& E, Eigen::Vector3d q1[5], Eigen::Vector3d q2[5])
+{
+    const Eigen::Vector3d axis(rng.gaussian(1), rng.gaussian(1), rng.gaussian(1));
+    const Eigen::Matrix3d R = Eigen::AngleAxisd(rng.uniform(0.0, 0.5), axis.normalized()).matrix();
+    const Eigen::Vector3d t =
+        Eigen::Vector3d(rng.gaussian(1), rng.gaussian(1), rng.gaussian(1)).normalized();
+    E = skew(t) * R;
+    for (int k = 0; k < 5; ++k) {
+        Eigen::Vector3d X, Y;
+        do {
+            X = Eigen::Vector3d(rng.uniform(-2.0, 2.0), rng.uniform(-2.0, 2.0),
+                                rng.uniform(3.0, 8.0));
+            Y = R * X + t;
+        } while (Y.z() <= 0.5);
+        q1[k] = X / X.z();
+        q2[k] = Y / Y.z();
+    }
+}
+
+TEST(Rcme_EssentialFivePoint, the_true_essential_matrix_is_among_the_solutions)
+{
+    cv::RNG rng(11);
+    int solutions = 0;
+    for (int trial = 0; trial < 1000; ++trial) {
+        Eigen::Matrix3d Etrue, E[kMaxFivePointSolutions];
+        Eigen::Vector3d q1[5], q2[5];
+        randomProblem(rng, Etrue, q1, q2);
+        Etrue /= Etrue.norm();
+        const int count = essentialFromFivePoints(q1, q2, E);
+        ASSERT_GE(count, 1);
+        ASSERT_LE(count, kMaxFivePointSolutions);
+        solutions += count;
+        double best = 1e300;
+        for (int s = 0; s < count; ++s) {
+            EXPECT_NEAR(E[s].norm(), 1.0, 1e-12);
+            for (int k = 0; k < 5; ++k)
+                EXPECT_LT(std::abs(q2[k].dot(E[s] * q1[k])), 1e-10);
+            best = std::min({best, (E[s] - Etrue).norm(), (E[s] + Etrue).norm()});
+        }
+        EXPECT_LT(best, 1e-8) << "trial " << trial;
+        // The truth puts every point in front of both cameras.
+        EXPECT_TRUE(admitsCommonCheirality(Etrue, q1, q2, 5));
+    }
+    std::cout << "1000 samples, " << solutions << " solutions" << std::endl;
+}
+
+TEST(Rcme_EssentialFivePoint, degenerate_samples_give_no_solution)
+{
+    Eigen::Vector3d q1[5], q2[5];
+    for (int k = 0; k < 5; ++k) {
+        q1[k] = Eigen::Vector3d(0.1, 0.2, 1.0); // coincident in image 1
+        q2[k] = Eigen::Vector3d(0.01 * k, 0.02 * k, 1.0);
+    }
+    Eigen::Matrix3d E[kMaxFivePointSolutions];
+    EXPECT_EQ(essentialFromFivePoints(q1, q2, E), 0);
+    q1[0] = Eigen::Vector3d::Zero(); // a zero ray
+    EXPECT_EQ(essentialFromFivePoints(q1, q2, E), 0);
+}
+
+TEST(Rcme_Cheirality, points_split_between_twisted_pairs_admit_no_common_cheirality)
+{
+    cv::RNG rng(13);
+    for (int trial = 0; trial < 100; ++trial) {
+        Eigen::Matrix3d E;
+        Eigen::Vector3d q1[5], q2[5];
+        randomProblem(rng, E, q1, q2);
+        ASSERT_TRUE(admitsCommonCheirality(E, q1, q2, 5));
+        ASSERT_TRUE(admitsCommonCheirality(-E, q1, q2, 5)); // the sign of E does not matter
+        // A point behind camera 2 only (its depths disagree in sign) splits the sample.
+        const Eigen::Vector3d t = Eigen::Vector3d(E.col(0).cross(E.col(1))).normalized();
+        Eigen::Vector3d flipped[5];
+        std::copy(q2, q2 + 5, flipped);
+        // The mirror of q2[0] in the epipolar plane through t keeps the epipolar constraint.
+        const Eigen::Vector3d n = t.cross(q2[0]).normalized();
+        flipped[0] = q2[0] - 2 * (q2[0] - t * t.dot(q2[0])); // 2 t (t.q) - q: same plane
+        ASSERT_LT(std::abs(flipped[0].dot(n)), 1e-12);
+        EXPECT_FALSE(admitsCommonCheirality(E, q1, flipped, 5)) << "trial " << trial;
+    }
+}
+
+TEST(Rcme_HomographyFourPoint, recovers_a_homography_and_rejects_collinear_points)
+{
+    cv::RNG rng(17);
+    for (int trial = 0; trial < 200; ++trial) {
+        Eigen::Matrix3d Htrue;
+        Htrue << 1 + rng.uniform(-0.3, 0.3), rng.uniform(-0.3, 0.3), rng.uniform(-1.0, 1.0),
+            rng.uniform(-0.3, 0.3), 1 + rng.uniform(-0.3, 0.3), rng.uniform(-1.0, 1.0),
+            rng.uniform(-0.2, 0.2), rng.uniform(-0.2, 0.2), 1.0;
+        Eigen::Vector2d x1[4], x2[4];
+        for (int k = 0; k < 4; ++k) {
+            x1[k] = Eigen::Vector2d(rng.uniform(-1.0, 1.0), rng.uniform(-1.0, 1.0));
+            x2[k] = (Htrue * homogeneous(x1[k])).hnormalized();
+        }
+        Eigen::Matrix3d H;
+        ASSERT_TRUE(homographyFromFourPoints(x1, x2, H));
+        EXPECT_LT((H - Htrue).norm(), 1e-8 * Htrue.norm()) << "trial " << trial;
+    }
+    Eigen::Vector2d x1[4] = {{0, 0}, {1, 1}, {2, 2}, {0, 1}},
+                    x2[4] = {{0, 0}, {1, 0}, {0, 1}, {1, 1}};
+    Eigen::Matrix3d H;
+    EXPECT_FALSE(homographyFromFourPoints(x1, x2, H)); // three collinear in image 1
+}
+
+TEST(Rcme_SampsonBand, counts_and_masks_as_the_distance_per_point)
+{
+    cv::RNG rng(19);
+    for (int trial = 0; trial < 50; ++trial) {
+        const size_t n = static_cast<size_t>(rng.uniform(1, 300));
+        std::vector<Eigen::Vector2d> p1(n), p2(n);
+        for (size_t i = 0; i < n; ++i) {
+            p1[i] = Eigen::Vector2d(rng.uniform(0.0, 640.0), rng.uniform(0.0, 480.0));
+            p2[i] = p1[i] + Eigen::Vector2d(rng.uniform(-20.0, 20.0), rng.uniform(-3.0, 3.0));
+        }
+        Eigen::Matrix3d F;
+        F << 0, -1e-3, 0.2, 1e-3, 0, -0.3, -0.2, 0.3, rng.uniform(-2.0, 2.0);
+        const double thresholdSquared = rng.uniform(0.5, 30.0);
+        std::vector<uchar> mask(n, 7);
+        const int count = countInSampsonBand(F, p1, p2, thresholdSquared, mask.data());
+        int expected = 0;
+        for (size_t i = 0; i < n; ++i) {
+            const bool within = sampsonDistanceSquared(F, p1[i], p2[i]) <= thresholdSquared;
+            expected += within;
+            EXPECT_EQ(mask[i], within ? 1 : 0);
+        }
+        EXPECT_EQ(count, expected);
+        EXPECT_EQ(countInSampsonBand(F, p1, p2, thresholdSquared), expected);
+    }
+    // A point at the epipole (|J| = 0) is never within the band.
+    Eigen::Matrix3d F = skew(Eigen::Vector3d(0, 0, 1));
+    const std::vector<Eigen::Vector2d> origin = {Eigen::Vector2d(0, 0)};
+    EXPECT_EQ(countInSampsonBand(F, origin, origin, 1.0), 0);
+}
+
+} // namespace
+} // namespace opencv_test
+
+#endif // RCME_STANDALONE_TESTS
