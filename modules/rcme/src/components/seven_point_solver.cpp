@@ -11,6 +11,7 @@
 
 #include "framework/components.hpp"
 #include "geometry/epipolar.hpp"
+#include "solvers/epipolar_null_space.hpp"
 
 namespace cv {
 namespace rcme {
@@ -108,27 +109,23 @@ public:
             !normalizingTransform(data.points2, sample, T2))
             return 0;
 
-        // x2^T F x1 = 0 as a row of A times the row-major entries of F; A is padded with two
-        // zero rows to a square matrix so that the SVD gives the full null space.
-        Eigen::Matrix<double, 9, 9> A = Eigen::Matrix<double, 9, 9>::Zero();
+        Eigen::Vector3d x1[7], x2[7];
         for (int k = 0; k < 7; ++k) {
             const size_t i = static_cast<size_t>(sample[static_cast<size_t>(k)]);
-            const Eigen::Vector3d a = T1 * homogeneous(data.points1[i]);
-            const Eigen::Vector3d b = T2 * homogeneous(data.points2[i]);
-            A.row(k) << b.x() * a.transpose(), b.y() * a.transpose(), a.transpose();
+            x1[k] = T1 * homogeneous(data.points1[i]);
+            x2[k] = T2 * homogeneous(data.points2[i]);
         }
-        const Eigen::JacobiSVD<Eigen::Matrix<double, 9, 9>> svd(A, Eigen::ComputeFullV);
-        const Eigen::Matrix<double, 9, 1> sv = svd.singularValues();
         // A third (near) null direction means the sample does not determine the pencil:
-        // coincident, collinear or otherwise degenerate points. Same ratio as the 8-point
-        // solver's, on singular values instead of eigenvalues of A^T A.
-        if (!(sv(6) > 1e-5 * sv(0)))
+        // coincident, collinear or otherwise degenerate points (the 8-point solver's tolerance).
+        Eigen::Matrix<double, 9, 2> pencil;
+        if (!epipolarNullSpace<7>(x1, x2, 1e-5, pencil))
             return 0;
         Eigen::Matrix3d F1, F2;
-        const Eigen::Matrix<double, 9, 9>& V = svd.matrixV();
-        F1 << V(0, 7), V(1, 7), V(2, 7), V(3, 7), V(4, 7), V(5, 7), V(6, 7), V(7, 7), V(8, 7);
-        F2 << V(0, 8), V(1, 8), V(2, 8), V(3, 8), V(4, 8), V(5, 8), V(6, 8), V(7, 8), V(8, 8);
-
+        for (int r = 0; r < 3; ++r)
+            for (int col = 0; col < 3; ++col) {
+                F1(r, col) = pencil(3 * r + col, 0);
+                F2(r, col) = pencil(3 * r + col, 1);
+            }
         // det(a F1 + (1 - a) F2) = 0 is a cubic on the pencil, but in that parameterization a
         // root can sit at (or near) infinity, where the leading coefficient vanishes. Instead the
         // pencil is written Fb + x Fa with Fa the member of largest |det| among four directions

@@ -14,6 +14,7 @@
 
 #include "solvers/essential_five_point.hpp"
 
+#include "solvers/epipolar_null_space.hpp"
 #include "solvers/real_roots.hpp"
 
 #include <Eigen/Dense>
@@ -276,23 +277,10 @@ void polishRoot(const Eigen::Matrix<double, 10, kMonomials>& M, Eigen::Vector3d&
 int essentialFromFivePoints(const Eigen::Vector3d* q1, const Eigen::Vector3d* q2,
                             Eigen::Matrix3d* solutions)
 {
-    // q2^T E q1 = 0 as a row times the row-major entries of E; rows of unit norm, as columns of
-    // A^T, whose QR decomposition gives the null space as the last four columns of Q.
-    Eigen::Matrix<double, 9, 5> At;
-    for (int k = 0; k < 5; ++k) {
-        for (int r = 0; r < 3; ++r)
-            At.block<3, 1>(3 * r, k) = q2[k](r) * q1[k];
-        const double norm = At.col(k).norm();
-        if (!(norm > 0) || !std::isfinite(norm))
-            return 0;
-        At.col(k) /= norm;
-    }
-    const Eigen::ColPivHouseholderQR<Eigen::Matrix<double, 9, 5>> qr(At);
     // A fifth (near) null direction: coincident, collinear or otherwise degenerate points.
-    if (!(std::abs(qr.matrixQR()(4, 4)) > 1e-7 * std::abs(qr.matrixQR()(0, 0))))
+    Eigen::Matrix<double, 9, 4> basis; // X, Y, Z, W
+    if (!epipolarNullSpace<5>(q1, q2, 1e-7, basis))
         return 0;
-    const Eigen::Matrix<double, 9, 9> Q = qr.householderQ();
-    const Eigen::Matrix<double, 9, 4> basis = Q.rightCols<4>(); // X, Y, Z, W
 
     const Eigen::Matrix<double, 10, kMonomials> M = essentialConstraints(basis);
     Eigen::Matrix<double, 10, 10> G;
