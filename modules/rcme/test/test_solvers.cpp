@@ -9,7 +9,7 @@
 #ifdef RCME_STANDALONE_TESTS
 
 #include "geometry/epipolar.hpp"
-#include "geometry/sampson_band.hpp"
+#include "geometry/residual_bands.hpp"
 #include "solvers/essential_five_point.hpp"
 #include "solvers/homography_four_point.hpp"
 #include "solvers/real_roots.hpp"
@@ -248,6 +248,33 @@ TEST(Rcme_SampsonBand, counts_and_masks_as_the_distance_per_point)
     Eigen::Matrix3d F = skew(Eigen::Vector3d(0, 0, 1));
     const std::vector<Eigen::Vector2d> origin = {Eigen::Vector2d(0, 0)};
     EXPECT_EQ(countInSampsonBand(F, origin, origin, 1.0), 0);
+}
+
+TEST(Rcme_TransferBand, counts_and_masks_as_the_transfer_error)
+{
+    cv::RNG rng(23);
+    for (int trial = 0; trial < 50; ++trial) {
+        const size_t n = static_cast<size_t>(rng.uniform(1, 300));
+        Eigen::Matrix3d H;
+        H << 1.1, 0.05, 3, -0.02, 0.95, -4, 1e-4, -2e-4, 1;
+        std::vector<Eigen::Vector2d> p1(n), p2(n);
+        for (size_t i = 0; i < n; ++i) {
+            p1[i] = Eigen::Vector2d(rng.uniform(0.0, 640.0), rng.uniform(0.0, 480.0));
+            p2[i] = (H * homogeneous(p1[i])).hnormalized() +
+                    Eigen::Vector2d(rng.gaussian(3.0), rng.gaussian(3.0));
+        }
+        const double thresholdSquared = rng.uniform(1.0, 30.0);
+        std::vector<uchar> mask(n, 7);
+        const int count = countWithinTransfer(H, p1, p2, thresholdSquared, mask.data());
+        int expected = 0;
+        for (size_t i = 0; i < n; ++i) {
+            const double e = (p2[i] - (H * homogeneous(p1[i])).hnormalized()).squaredNorm();
+            expected += e <= thresholdSquared;
+            EXPECT_EQ(mask[i], e <= thresholdSquared ? 1 : 0);
+        }
+        EXPECT_EQ(count, expected);
+        EXPECT_EQ(countWithinTransfer(H, p1, p2, thresholdSquared), expected);
+    }
 }
 
 } // namespace

@@ -16,6 +16,7 @@
 #include "framework/components.hpp"
 #include "geometry/epipolar.hpp"
 #include "geometry/motion_parameterization.hpp"
+#include "geometry/residual_bands.hpp"
 #include "geometry/statistics.hpp"
 #include "solvers/homography_four_point.hpp"
 
@@ -83,26 +84,6 @@ double homographyInlierNoise(double statedSigma, std::vector<double> squaredErro
     std::nth_element(squaredErrors.begin(), middle, squaredErrors.end());
     const double estimate = std::sqrt(*middle / chiSquareQuantile(0.5 * 0.95, 2));
     return std::min(statedSigma, std::max(estimate, 1e-3 * statedSigma));
-}
-
-// Points with |x2 - H x1| <= threshold (the transfer error), written to `within` when given;
-// compared as |x2 w - H x1|^2 <= threshold^2 w^2 (w the third entry of H x1): no division.
-int countWithinTransfer(const Eigen::Matrix3d& H, const std::vector<Eigen::Vector2d>& x1,
-                        const std::vector<Eigen::Vector2d>& x2, double thresholdSquared,
-                        uchar* within)
-{
-    int count = 0;
-    for (size_t i = 0; i < x1.size(); ++i) {
-        const double x = x1[i].x(), y = x1[i].y();
-        const double w = H(2, 0) * x + H(2, 1) * y + H(2, 2);
-        const double du = H(0, 0) * x + H(0, 1) * y + H(0, 2) - x2[i].x() * w;
-        const double dv = H(1, 0) * x + H(1, 1) * y + H(1, 2) - x2[i].y() * w;
-        const bool inside = (du * du + dv * dv <= thresholdSquared * w * w) & (w != 0);
-        if (within)
-            within[i] = inside;
-        count += inside;
-    }
-    return count;
 }
 
 // Least squares (the direct linear transform) on the selected points, in the coordinates

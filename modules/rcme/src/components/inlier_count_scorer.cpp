@@ -7,7 +7,7 @@
 // quality input" instead of an 8-point fit to noise.
 
 #include "framework/components.hpp"
-#include "geometry/sampson_band.hpp"
+#include "geometry/residual_bands.hpp"
 #include "geometry/statistics.hpp"
 
 namespace cv {

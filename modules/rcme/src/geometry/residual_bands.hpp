@@ -1,8 +1,8 @@
 // This file is part of the rcme module. It is subject to the license terms in the LICENSE file
 // found in the top-level directory of this distribution.
 
-#ifndef OPENCV_RCME_GEOMETRY_SAMPSON_BAND_HPP
-#define OPENCV_RCME_GEOMETRY_SAMPSON_BAND_HPP
+#ifndef OPENCV_RCME_GEOMETRY_RESIDUAL_BANDS_HPP
+#define OPENCV_RCME_GEOMETRY_RESIDUAL_BANDS_HPP
 
 #include "precomp.hpp"
 
@@ -18,6 +18,14 @@ branch, and is compiled for AVX2 too where the compiler can pick the variant at 
 int countInSampsonBand(const Eigen::Matrix3d& F, const std::vector<Eigen::Vector2d>& points1,
                        const std::vector<Eigen::Vector2d>& points2, double thresholdSquared,
                        uchar* mask = nullptr);
+
+/** The number of correspondences within `transferThreshold` of the homography H: transfer error
+|x2 - H x1 / w| with w the third entry of H [x1; 1], compared as |x2 w - (H x1)_xy|^2 <=
+threshold^2 w^2 (no division; w = 0 is never within). With `mask`, also 1/0 per point. The inner
+loop of the degeneracy test's homography RANSAC, built like countInSampsonBand. */
+int countWithinTransfer(const Eigen::Matrix3d& H, const std::vector<Eigen::Vector2d>& points1,
+                        const std::vector<Eigen::Vector2d>& points2, double thresholdSquared,
+                        uchar* mask = nullptr);
 
 } // namespace detail
 } // namespace rcme
