@@ -368,5 +368,43 @@ TEST(Rcme_Standard, local_optimization_gathers_more_inliers)
         EXPECT_GT(recall[1], recall[0] + 0.04);
 }
 
+// Above kMaxIteratedPoints (20000) inliers the deciding fits iterate on an evenly spaced subset
+// and the final estimate finishes on every point (doc/performance.md, "Large inputs"). 30000
+// inliers take that path; the motion must stay as accurate as its reported uncertainty says,
+// which is that of all the inliers (the subset alone would give errors sqrt(1.5) larger).
+TEST(Rcme_Standard, large_inputs_are_refined_on_every_inlier)
+{
+    SceneParams sp;
+    sp.kind = SCENE_GENERIC;
+    sp.numPoints = 60000;
+    sp.inlierRatio = 0.5;
+    double normalizedSquares = 0;
+    int dof = 0;
+    const int seeds = testRuns(4, 2);
+    for (int seed = 0; seed < seeds; ++seed) {
+        sp.seed = 100 + seed;
+        const SyntheticScene scene = generateScene(sp);
+        Params params; // the defaults
+        params.randomGeneratorState = seed;
+        const Report report =
+            estimateRelativeMotion(scene.points1, scene.points2, scene.cameraMatrix, params);
+        ASSERT_EQ(report.status, STATUS_SUCCESS) << report.message;
+        const int inliers = countNonZero(report.mask);
+        EXPECT_GT(inliers, 27000);
+        EXPECT_LT(inliers, 33000);
+        const MotionError error = compareMotion(report.R, report.t, scene.R, scene.t);
+        // The largest axis deviation bounds the rotation error's spread from above.
+        double rotationStd = 0;
+        minMaxLoc(report.rotationStdDeg, nullptr, &rotationStd);
+        EXPECT_LT(error.rotationDeg, 4 * std::sqrt(3.0) * rotationStd);
+        EXPECT_LT(error.translationDeg, 4 * std::sqrt(2.0) * report.translationStdDeg);
+        normalizedSquares += std::pow(error.translationDeg / report.translationStdDeg, 2);
+        dof += 2;
+    }
+    // E[chi^2_2 / 2] = 1 for errors as large as predicted; sqrt(1.5) times larger gives 1.5.
+    std::cout << "translation error^2 / predicted variance, mean per dof: "
+              << normalizedSquares / dof << std::endl;
+}
+
 } // namespace
 } // namespace opencv_test

@@ -91,13 +91,16 @@ struct FundamentalProblem
     }
 };
 
+// The fits below visit inliers[0], inliers[stride], inliers[2 stride], ...: every point with
+// stride 1, an evenly spaced subset of a large set otherwise (iteratedStride).
 double sampsonCost(const TwoViewData& data, const std::vector<int>& inliers,
-                   const Eigen::Matrix3d& F)
+                   const Eigen::Matrix3d& F, size_t stride = 1)
 {
     double cost = 0;
-    for (int i : inliers)
-        cost += sampsonDistanceSquared(F, data.points1[static_cast<size_t>(i)],
-                                       data.points2[static_cast<size_t>(i)]);
+    for (size_t k = 0; k < inliers.size(); k += stride) {
+        const size_t i = static_cast<size_t>(inliers[k]);
+        cost += sampsonDistanceSquared(F, data.points1[i], data.points2[i]);
+    }
     return cost;
 }
 
@@ -106,7 +109,7 @@ template <class Problem>
 void normalEquations(const TwoViewData& data, const std::vector<int>& inliers,
                      const Problem& problem,
                      Eigen::Matrix<double, Problem::kDof, Problem::kDof>& JtJ,
-                     Eigen::Matrix<double, Problem::kDof, 1>& Jtr)
+                     Eigen::Matrix<double, Problem::kDof, 1>& Jtr, size_t stride = 1)
 {
     constexpr int P = Problem::kDof;
     const Eigen::Matrix3d F = problem.current();
@@ -116,9 +119,9 @@ void normalEquations(const TwoViewData& data, const std::vector<int>& inliers,
     Jtr.setZero();
     Eigen::Matrix<double, 1, P> g;
     double d = 0;
-    for (int i : inliers) {
-        if (!sampsonDistanceAndGradient<P>(F, dF, data.points1[static_cast<size_t>(i)],
-                                           data.points2[static_cast<size_t>(i)], d, g))
+    for (size_t k = 0; k < inliers.size(); k += stride) {
+        const size_t i = static_cast<size_t>(inliers[k]);
+        if (!sampsonDistanceAndGradient<P>(F, dF, data.points1[i], data.points2[i], d, g))
             continue;
         JtJ.noalias() += g.transpose() * g;
         Jtr.noalias() += g.transpose() * d;
@@ -128,15 +131,15 @@ void normalEquations(const TwoViewData& data, const std::vector<int>& inliers,
 // Levenberg-Marquardt with multiplicative damping on the diagonal. Returns the final cost.
 template <class Problem>
 double levenbergMarquardt(const TwoViewData& data, const std::vector<int>& inliers,
-                          Problem& problem, int maxIterations)
+                          Problem& problem, int maxIterations, size_t stride = 1)
 {
     constexpr int P = Problem::kDof;
-    double cost = sampsonCost(data, inliers, problem.current());
+    double cost = sampsonCost(data, inliers, problem.current(), stride);
     double damping = 1e-3;
     Eigen::Matrix<double, P, P> JtJ;
     Eigen::Matrix<double, P, 1> Jtr;
     for (int iteration = 0; iteration < maxIterations; ++iteration) {
-        normalEquations(data, inliers, problem, JtJ, Jtr);
+        normalEquations(data, inliers, problem, JtJ, Jtr, stride);
         bool improved = false;
         while (damping < 1e12) {
             Eigen::Matrix<double, P, P> A = JtJ;
@@ -144,7 +147,7 @@ double levenbergMarquardt(const TwoViewData& data, const std::vector<int>& inlie
             const Eigen::Matrix<double, P, 1> delta = A.ldlt().solve(-Jtr);
             if (!delta.allFinite())
                 break;
-            const double candidateCost = sampsonCost(data, inliers, problem.propose(delta));
+            const double candidateCost = sampsonCost(data, inliers, problem.propose(delta), stride);
             if (candidateCost < cost) {
                 problem.accept();
                 improved = cost - candidateCost > 1e-12 * cost;
@@ -158,6 +161,24 @@ double levenbergMarquardt(const TwoViewData& data, const std::vector<int>& inlie
             break;
     }
     return cost;
+}
+
+// A large fit iterates on an evenly spaced subset (kMaxIteratedPoints, two_view_data.hpp); the
+// final estimate then takes a few more iterations on every point.
+constexpr int kFullSetIterations = 3;
+
+template <class Problem>
+void leastSquares(const TwoViewData& data, const std::vector<int>& inliers, Problem& problem,
+                  int maxIterations, bool finishOnEveryPoint)
+{
+    if (inliers.size() <= kMaxIteratedPoints) {
+        levenbergMarquardt(data, inliers, problem, maxIterations);
+        return;
+    }
+    const size_t stride = (inliers.size() + kMaxIteratedPoints - 1) / kMaxIteratedPoints;
+    levenbergMarquardt(data, inliers, problem, maxIterations, stride);
+    if (finishOnEveryPoint)
+        levenbergMarquardt(data, inliers, problem, std::min(maxIterations, kFullSetIterations));
 }
 
 // Fewest residual degrees of freedom (inliers minus the model's) for the estimated noise to
@@ -280,12 +301,13 @@ void fitProblem(const TwoViewData& data, const std::vector<int>& indices, int ma
                 Uncertainty uncertainty, Problem& problem, Model& model,
                 std::vector<int>* confirmed)
 {
-    levenbergMarquardt(data, indices, problem, maxIterations);
-    if (uncertainty == Uncertainty::kFinalEstimate && confirmed) {
+    const bool final = uncertainty == Uncertainty::kFinalEstimate;
+    leastSquares(data, indices, problem, maxIterations, final);
+    if (final && confirmed) {
         *confirmed = indices;
         if (dropUnconfirmedInliers(data, problem, *confirmed) &&
             confirmed->size() >= 2 * static_cast<size_t>(Problem::kDof)) {
-            levenbergMarquardt(data, *confirmed, problem, maxIterations);
+            leastSquares(data, *confirmed, problem, maxIterations, true);
             setFinalUncertainty(data, *confirmed, problem, model);
             return;
         }

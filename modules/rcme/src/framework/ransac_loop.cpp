@@ -483,6 +483,11 @@ void resolveRivalMotions(const TwoViewData& data, EstimatorComponents& c, Ransac
     // model's was: a rival whose sample's few points chose -t (forward motion, far points: on
     // KITTI every rival within the margin was the selected motion with t reversed) is then the
     // selected motion again, not an ambiguity.
+    // A rival's refit and its decomposition on a subset of a large problem; costs on every point.
+    const TwoViewData subset = data.size() > static_cast<int>(kMaxIteratedPoints)
+                                   ? evenlySpacedSubset(data, kMaxIteratedPoints)
+                                   : TwoViewData();
+    const TwoViewData& fitData = subset.points1.empty() ? data : subset;
     std::vector<Model> motions{result.model};
     std::vector<double> costs{truncatedCost(data, result.model.F)};
     std::vector<uchar> within, inFront;
@@ -491,10 +496,11 @@ void resolveRivalMotions(const TwoViewData& data, EstimatorComponents& c, Ransac
             !areDistinctMotions(rival.model, result.model))
             continue;
         Model refitted = rival.model;
-        if (refitOnOwnPoints(data, refitted).support <= 0)
+        if (refitOnOwnPoints(fitData, refitted).support <= 0)
             continue;
-        planarFit(data, refitted, within, inFront);
-        if (recoverMotion(data, within, refitted) && areDistinctMotions(refitted, result.model)) {
+        planarFit(fitData, refitted, within, inFront);
+        if (recoverMotion(fitData, within, refitted) &&
+            areDistinctMotions(refitted, result.model)) {
             motions.push_back(refitted);
             costs.push_back(truncatedCost(data, refitted.F));
         }

@@ -210,6 +210,22 @@ void writeMask(const std::vector<uchar>& mask, OutputArray out)
     Mat(static_cast<int>(mask.size()), 1, CV_8U, const_cast<uchar*>(mask.data())).copyTo(out);
 }
 
+TwoViewData evenlySpacedSubset(const TwoViewData& data, size_t maxPoints)
+{
+    TwoViewData subset = data;
+    const size_t n = data.points1.size();
+    if (n <= maxPoints || maxPoints == 0)
+        return subset;
+    const size_t stride = (n + maxPoints - 1) / maxPoints;
+    subset.points1.clear();
+    subset.points2.clear();
+    for (size_t i = 0; i < n; i += stride) {
+        subset.points1.push_back(data.points1[i]);
+        subset.points2.push_back(data.points2[i]);
+    }
+    return subset;
+}
+
 } // namespace detail
 } // namespace rcme
 } // namespace cv
