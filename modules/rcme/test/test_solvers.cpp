@@ -11,7 +11,6 @@
 #include "geometry/epipolar.hpp"
 #include "geometry/residual_bands.hpp"
 #include "solvers/essential_five_point.hpp"
-#include "solvers/homography_four_point.hpp"
 #include "solvers/real_roots.hpp"
 
 #include <Eigen/Eigenvalues>
@@ -197,29 +196,6 @@ TEST(Rcme_Cheirality, points_split_between_twisted_pairs_admit_no_common_cheiral
     }
 }
 
-TEST(Rcme_HomographyFourPoint, recovers_a_homography_and_rejects_collinear_points)
-{
-    cv::RNG rng(17);
-    for (int trial = 0; trial < 200; ++trial) {
-        Eigen::Matrix3d Htrue;
-        Htrue << 1 + rng.uniform(-0.3, 0.3), rng.uniform(-0.3, 0.3), rng.uniform(-1.0, 1.0),
-            rng.uniform(-0.3, 0.3), 1 + rng.uniform(-0.3, 0.3), rng.uniform(-1.0, 1.0),
-            rng.uniform(-0.2, 0.2), rng.uniform(-0.2, 0.2), 1.0;
-        Eigen::Vector2d x1[4], x2[4];
-        for (int k = 0; k < 4; ++k) {
-            x1[k] = Eigen::Vector2d(rng.uniform(-1.0, 1.0), rng.uniform(-1.0, 1.0));
-            x2[k] = (Htrue * homogeneous(x1[k])).hnormalized();
-        }
-        Eigen::Matrix3d H;
-        ASSERT_TRUE(homographyFromFourPoints(x1, x2, H));
-        EXPECT_LT((H - Htrue).norm(), 1e-8 * Htrue.norm()) << "trial " << trial;
-    }
-    Eigen::Vector2d x1[4] = {{0, 0}, {1, 1}, {2, 2}, {0, 1}},
-                    x2[4] = {{0, 0}, {1, 0}, {0, 1}, {1, 1}};
-    Eigen::Matrix3d H;
-    EXPECT_FALSE(homographyFromFourPoints(x1, x2, H)); // three collinear in image 1
-}
-
 TEST(Rcme_SampsonBand, counts_and_masks_as_the_distance_per_point)
 {
     cv::RNG rng(19);
@@ -248,33 +224,6 @@ TEST(Rcme_SampsonBand, counts_and_masks_as_the_distance_per_point)
     Eigen::Matrix3d F = skew(Eigen::Vector3d(0, 0, 1));
     const std::vector<Eigen::Vector2d> origin = {Eigen::Vector2d(0, 0)};
     EXPECT_EQ(countInSampsonBand(F, origin, origin, 1.0), 0);
-}
-
-TEST(Rcme_TransferBand, counts_and_masks_as_the_transfer_error)
-{
-    cv::RNG rng(23);
-    for (int trial = 0; trial < 50; ++trial) {
-        const size_t n = static_cast<size_t>(rng.uniform(1, 300));
-        Eigen::Matrix3d H;
-        H << 1.1, 0.05, 3, -0.02, 0.95, -4, 1e-4, -2e-4, 1;
-        std::vector<Eigen::Vector2d> p1(n), p2(n);
-        for (size_t i = 0; i < n; ++i) {
-            p1[i] = Eigen::Vector2d(rng.uniform(0.0, 640.0), rng.uniform(0.0, 480.0));
-            p2[i] = (H * homogeneous(p1[i])).hnormalized() +
-                    Eigen::Vector2d(rng.gaussian(3.0), rng.gaussian(3.0));
-        }
-        const double thresholdSquared = rng.uniform(1.0, 30.0);
-        std::vector<uchar> mask(n, 7);
-        const int count = countWithinTransfer(H, p1, p2, thresholdSquared, mask.data());
-        int expected = 0;
-        for (size_t i = 0; i < n; ++i) {
-            const double e = (p2[i] - (H * homogeneous(p1[i])).hnormalized()).squaredNorm();
-            expected += e <= thresholdSquared;
-            EXPECT_EQ(mask[i], e <= thresholdSquared ? 1 : 0);
-        }
-        EXPECT_EQ(count, expected);
-        EXPECT_EQ(countWithinTransfer(H, p1, p2, thresholdSquared), expected);
-    }
 }
 
 } // namespace

@@ -12,17 +12,14 @@
 // manifold (F: 3, H: 2) and k its parameters (F: 7, H: 8). The homography wins when its GRIC is
 // not larger.
 
-#include "components/random.hpp"
 #include "framework/components.hpp"
 #include "geometry/epipolar.hpp"
 #include "geometry/motion_parameterization.hpp"
-#include "geometry/residual_bands.hpp"
 #include "geometry/statistics.hpp"
-#include "solvers/homography_four_point.hpp"
+
+#include <opencv2/calib3d.hpp>
 
 #include <algorithm>
-#include <array>
-#include <numeric>
 
 namespace cv {
 namespace rcme {
@@ -86,105 +83,6 @@ double homographyInlierNoise(double statedSigma, std::vector<double> squaredErro
     return std::min(statedSigma, std::max(estimate, 1e-3 * statedSigma));
 }
 
-// Least squares (the direct linear transform) on the selected points, in the coordinates
-// y = T x; returns H in pixels. False when the points do not determine it.
-bool homographyLeastSquares(const std::vector<Eigen::Vector2d>& y1,
-                            const std::vector<Eigen::Vector2d>& y2,
-                            const std::vector<uchar>& selected, const Eigen::Matrix3d& T1,
-                            const Eigen::Matrix3d& T2, Eigen::Matrix3d& H)
-{
-    Eigen::Matrix<double, 9, 9> normal = Eigen::Matrix<double, 9, 9>::Zero();
-    int used = 0;
-    for (size_t i = 0; i < y1.size(); ++i) {
-        if (!selected[i])
-            continue;
-        const double x = y1[i].x(), y = y1[i].y(), u = y2[i].x(), v = y2[i].y();
-        Eigen::Matrix<double, 9, 1> a, b;
-        a << x, y, 1, 0, 0, 0, -u * x, -u * y, -u;
-        b << 0, 0, 0, x, y, 1, -v * x, -v * y, -v;
-        normal.selfadjointView<Eigen::Lower>().rankUpdate(a);
-        normal.selfadjointView<Eigen::Lower>().rankUpdate(b);
-        ++used;
-    }
-    if (used < 4)
-        return false;
-    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 9, 9>> eig(
-        normal.selfadjointView<Eigen::Lower>());
-    if (eig.info() != Eigen::Success || !(eig.eigenvalues()(1) > 0))
-        return false;
-    const Eigen::Matrix<double, 9, 1> h = eig.eigenvectors().col(0);
-    Eigen::Matrix3d Hn;
-    Hn << h(0), h(1), h(2), h(3), h(4), h(5), h(6), h(7), h(8);
-    H = T2.inverse() * Hn * T1;
-    return H.allFinite();
-}
-
-/* A homography fitted robustly to x1 <-> x2: 4-point samples from a fixed seed (reproducible),
-support by the transfer error, at most 200 samples and fewer once the best support makes a
-better one unlikely at 0.999 (what cv::findHomography's RANSAC was asked for here before); the
-best sample's homography is then refitted by least squares on its support, twice. Its own loop,
-not findHomography: that one decomposes a 9x9 matrix per sample and took half of an adaptive
-call. */
-bool fitHomographyRobustly(const std::vector<Eigen::Vector2d>& x1,
-                           const std::vector<Eigen::Vector2d>& x2, double transferThreshold,
-                           Eigen::Matrix3d& H)
-{
-    constexpr int kMaxSamples = 200;
-    constexpr double kConfidence = 0.999;
-    constexpr uint64_t kSeed = 0x9E3779B97F4A7C15ull;
-    constexpr int kRefits = 2;
-    const size_t n = x1.size();
-    std::vector<int> all(n);
-    std::iota(all.begin(), all.end(), 0);
-    Eigen::Matrix3d T1, T2;
-    if (n < 4 || !normalizingTransform(x1, all, T1) || !normalizingTransform(x2, all, T2))
-        return false;
-    std::vector<Eigen::Vector2d> y1(n), y2(n);
-    for (size_t i = 0; i < n; ++i) {
-        y1[i] = (T1 * homogeneous(x1[i])).head<2>();
-        y2[i] = (T2 * homogeneous(x2[i])).head<2>();
-    }
-    const Eigen::Matrix3d T2inv = T2.inverse();
-    const double thresholdSquared = transferThreshold * transferThreshold;
-    uint64_t state = kSeed;
-    std::array<int, 4> sample{};
-    int bestSupport = 0, bound = kMaxSamples;
-    for (int iteration = 0; iteration < bound; ++iteration) {
-        drawDistinct(state, static_cast<uint32_t>(n), 0, sample);
-        Eigen::Vector2d a[4], b[4];
-        for (int k = 0; k < 4; ++k) {
-            a[k] = y1[static_cast<size_t>(sample[static_cast<size_t>(k)])];
-            b[k] = y2[static_cast<size_t>(sample[static_cast<size_t>(k)])];
-        }
-        Eigen::Matrix3d Hn;
-        if (!homographyFromFourPoints(a, b, Hn))
-            continue;
-        const Eigen::Matrix3d candidate = T2inv * Hn * T1;
-        const int support = countWithinTransfer(candidate, x1, x2, thresholdSquared, nullptr);
-        if (support <= bestSupport)
-            continue;
-        bestSupport = support;
-        H = candidate;
-        const double ratio = static_cast<double>(support) / static_cast<double>(n);
-        const double miss = 1.0 - ratio * ratio * ratio * ratio;
-        if (miss <= 0)
-            break;
-        bound = std::min(bound,
-                         static_cast<int>(std::ceil(std::log(1 - kConfidence) / std::log(miss))));
-    }
-    if (bestSupport < 4)
-        return false;
-    std::vector<uchar> support(n);
-    for (int refit = 0; refit < kRefits; ++refit) {
-        countWithinTransfer(H, x1, x2, thresholdSquared, support.data());
-        Eigen::Matrix3d fitted;
-        if (!homographyLeastSquares(y1, y2, support, T1, T2, fitted))
-            break;
-        H = fitted;
-    }
-    return true;
-}
-
 } // namespace
 
 HomographyComparison compareWithHomography(const TwoViewData& data, const Eigen::Matrix3d& F,
@@ -195,31 +93,37 @@ HomographyComparison compareWithHomography(const TwoViewData& data, const Eigen:
     // RCME's bands widen with the model's uncertainty, which is large exactly when F is not
     // determined, and then hold points that a homography fits and F does not.
     const double thresholdSquared = data.threshold * data.threshold;
-    std::vector<Eigen::Vector2d> candidates1, candidates2;
+    std::vector<Point2d> candidates1, candidates2;
     for (size_t i = 0; i < data.points1.size(); ++i)
         if (mask[i] ||
             sampsonDistanceSquared(F, data.points1[i], data.points2[i]) <= thresholdSquared) {
-            candidates1.push_back(data.points1[i]);
-            candidates2.push_back(data.points2[i]);
+            candidates1.emplace_back(data.points1[i].x(), data.points1[i].y());
+            candidates2.emplace_back(data.points2[i].x(), data.points2[i].y());
         }
     if (candidates1.size() < 8)
         return result;
 
     // The transfer error of a true correspondence has both images' noise: chi-square, 2 DoF.
-    // 200 samples: H can only win when it explains most of the candidates (F's per-point
+    // 200 iterations: H can only win when it explains most of the candidates (F's per-point
     // penalty is log 4), and then 200 four-point samples find it with certainty.
     const double transferThreshold = data.sigma * std::sqrt(2.0 * chiSquareQuantile(0.95, 2));
-    Eigen::Matrix3d H;
-    if (!fitHomographyRobustly(candidates1, candidates2, transferThreshold, H))
+    // OpenCV's RANSAC here draws from a fixed seed, so the result is reproducible.
+    const Mat Hmat =
+        findHomography(candidates1, candidates2, RANSAC, transferThreshold, noArray(), 200, 0.999);
+    if (Hmat.empty())
         return result;
+    Eigen::Matrix3d H;
+    for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c)
+            H(r, c) = Hmat.at<double>(r, c);
 
     // GRIC over the points that either model explains: a point neither explains would be capped
     // in both, at costs that differ by the models' dimensions, and favour F for no reason.
     const double homographyCut = data.sigma * data.sigma * chiSquareQuantile(0.95, 2);
     std::vector<double> homographyErrors, fundamentalErrors;
     for (size_t i = 0; i < candidates1.size(); ++i) {
-        const Eigen::Vector2d& x1 = candidates1[i];
-        const Eigen::Vector2d& x2 = candidates2[i];
+        const Eigen::Vector2d x1(candidates1[i].x, candidates1[i].y);
+        const Eigen::Vector2d x2(candidates2[i].x, candidates2[i].y);
         const double errorH = homographySampsonSquared(H, x1, x2);
         const double errorF = sampsonDistanceSquared(F, x1, x2);
         if (errorH <= homographyCut || errorF <= thresholdSquared) {

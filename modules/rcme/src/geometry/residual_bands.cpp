@@ -44,57 +44,28 @@ RCME_VECTOR_CLONES int bandLoop(const double* f, const double* a, const double* 
     return static_cast<int>(count);
 }
 
-template <bool WriteMask>
-RCME_VECTOR_CLONES int transferLoop(const double* h, const double* a, const double* b, size_t n,
-                                    double thresholdSquared, uchar* mask)
+using Loop = int (*)(const double*, const double*, const double*, size_t, double, uchar*);
+
+// Runs a loop on the row-major entries of M and the points as contiguous (x, y) pairs.
+int runLoop(Loop withMask, Loop countOnly, const Eigen::Matrix3d& M,
+            const std::vector<Eigen::Vector2d>& points1,
+            const std::vector<Eigen::Vector2d>& points2, double thresholdSquared, uchar* mask)
 {
-    const double h00 = h[0], h01 = h[1], h02 = h[2], h10 = h[3], h11 = h[4], h12 = h[5];
-    const double h20 = h[6], h21 = h[7], h22 = h[8];
-    long long count = 0;
-    for (size_t i = 0; i < n; ++i) {
-        const double x = a[2 * i], y = a[2 * i + 1], u = b[2 * i], v = b[2 * i + 1];
-        const double w = h20 * x + h21 * y + h22;
-        const double du = h00 * x + h01 * y + h02 - u * w;
-        const double dv = h10 * x + h11 * y + h12 - v * w;
-        const bool within = (du * du + dv * dv <= thresholdSquared * w * w) & (w != 0);
-        if (WriteMask)
-            mask[i] = within;
-        count += within;
-    }
-    return static_cast<int>(count);
+    CV_DbgAssert(points1.size() == points2.size());
+    const Eigen::Matrix<double, 3, 3, Eigen::RowMajor> m = M;
+    if (points1.empty())
+        return 0;
+    return (mask ? withMask : countOnly)(m.data(), points1.data()->data(), points2.data()->data(),
+                                         points1.size(), thresholdSquared, mask);
 }
 
 } // namespace
-
-int countWithinTransfer(const Eigen::Matrix3d& H, const std::vector<Eigen::Vector2d>& points1,
-                        const std::vector<Eigen::Vector2d>& points2, double thresholdSquared,
-                        uchar* mask)
-{
-    CV_DbgAssert(points1.size() == points2.size());
-    const Eigen::Matrix<double, 3, 3, Eigen::RowMajor> h = H;
-    const size_t n = points1.size();
-    if (n == 0)
-        return 0;
-    const double* a = points1.data()->data();
-    const double* b = points2.data()->data();
-    return mask ? transferLoop<true>(h.data(), a, b, n, thresholdSquared, mask)
-                : transferLoop<false>(h.data(), a, b, n, thresholdSquared, nullptr);
-}
 
 int countInSampsonBand(const Eigen::Matrix3d& F, const std::vector<Eigen::Vector2d>& points1,
                        const std::vector<Eigen::Vector2d>& points2, double thresholdSquared,
                        uchar* mask)
 {
-    CV_DbgAssert(points1.size() == points2.size());
-    // Row-major entries of F; the points are contiguous (x, y) pairs.
-    const Eigen::Matrix<double, 3, 3, Eigen::RowMajor> f = F;
-    const size_t n = points1.size();
-    if (n == 0)
-        return 0;
-    const double* a = points1.data()->data();
-    const double* b = points2.data()->data();
-    return mask ? bandLoop<true>(f.data(), a, b, n, thresholdSquared, mask)
-                : bandLoop<false>(f.data(), a, b, n, thresholdSquared, nullptr);
+    return runLoop(bandLoop<true>, bandLoop<false>, F, points1, points2, thresholdSquared, mask);
 }
 
 } // namespace detail

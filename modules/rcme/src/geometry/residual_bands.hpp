@@ -19,14 +19,6 @@ int countInSampsonBand(const Eigen::Matrix3d& F, const std::vector<Eigen::Vector
                        const std::vector<Eigen::Vector2d>& points2, double thresholdSquared,
                        uchar* mask = nullptr);
 
-/** The number of correspondences within `transferThreshold` of the homography H: transfer error
-|x2 - H x1 / w| with w the third entry of H [x1; 1], compared as |x2 w - (H x1)_xy|^2 <=
-threshold^2 w^2 (no division; w = 0 is never within). With `mask`, also 1/0 per point. The inner
-loop of the degeneracy test's homography RANSAC, built like countInSampsonBand. */
-int countWithinTransfer(const Eigen::Matrix3d& H, const std::vector<Eigen::Vector2d>& points1,
-                        const std::vector<Eigen::Vector2d>& points2, double thresholdSquared,
-                        uchar* mask = nullptr);
-
 } // namespace detail
 } // namespace rcme
 } // namespace cv
