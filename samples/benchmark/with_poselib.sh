@@ -5,6 +5,7 @@
 # and the built module through PYTHONPATH; the arguments go to run_benchmark.py.
 #
 #   samples/benchmark/with_poselib.sh [run_benchmark.py arguments]
+#   samples/benchmark/with_poselib.sh --speed [speed.py arguments]   (the timing side by side)
 # Environment: BUILD_DIR (default build), POSELIB_VENV (default $BUILD_DIR/poselib-venv),
 # POSELIB_VERSION (default 2.0.5, the version measured in doc/results.md).
 set -euo pipefail
@@ -16,5 +17,10 @@ if ! "$venv/bin/python" -c "import poselib" 2>/dev/null; then
     /usr/bin/python3 -m venv --system-site-packages "$venv"
     "$venv/bin/pip" install --quiet "poselib==$version"
 fi
+script=run_benchmark.py
+if [ "${1:-}" = "--speed" ]; then
+    script=speed.py
+    shift
+fi
 PYTHONPATH="$build_dir/python${PYTHONPATH:+:$PYTHONPATH}" \
-    "$venv/bin/python" samples/benchmark/run_benchmark.py "$@"
+    "$venv/bin/python" "samples/benchmark/$script" "$@"
