@@ -84,22 +84,27 @@ using Linear = Eigen::Matrix<double, 4, 1>;
 using Quadratic = Eigen::Matrix<double, 10, 1>;
 using Cubic = Eigen::Matrix<double, kMonomials, 1>;
 
+//! a b for a polynomial a (coefficients over A monomials) times a linear one, `where[i][j]` the
+//! index of monomial i times monomial j among the N monomials of the product.
+template <int N, int A>
+Eigen::Matrix<double, N, 1> multiplyByLinear(const Eigen::Matrix<double, A, 1>& a, const Linear& b,
+                                             const int (&where)[A][4])
+{
+    Eigen::Matrix<double, N, 1> product = Eigen::Matrix<double, N, 1>::Zero();
+    for (int i = 0; i < A; ++i)
+        for (int j = 0; j < 4; ++j)
+            product(where[i][j]) += a(i) * b(j);
+    return product;
+}
+
 Quadratic multiply(const Linear& a, const Linear& b)
 {
-    Quadratic q = Quadratic::Zero();
-    for (int i = 0; i < 4; ++i)
-        for (int j = 0; j < 4; ++j)
-            q(kProducts.linearLinear[i][j]) += a(i) * b(j);
-    return q;
+    return multiplyByLinear<10>(a, b, kProducts.linearLinear);
 }
 
 Cubic multiply(const Quadratic& a, const Linear& b)
 {
-    Cubic c = Cubic::Zero();
-    for (int i = 0; i < 10; ++i)
-        for (int j = 0; j < 4; ++j)
-            c(kProducts.quadraticLinear[i][j]) += a(i) * b(j);
-    return c;
+    return multiplyByLinear<kMonomials>(a, b, kProducts.quadraticLinear);
 }
 
 /** The ten cubic constraints on E = x X + y Y + z Z + W as the rows of a 10x20 matrix, each row
