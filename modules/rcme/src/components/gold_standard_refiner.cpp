@@ -92,7 +92,7 @@ struct FundamentalProblem
 };
 
 // The fits below visit inliers[0], inliers[stride], inliers[2 stride], ...: every point with
-// stride 1, an evenly spaced subset of a large set otherwise (iteratedStride).
+// stride 1, an evenly spaced subset of a large set otherwise (leastSquares).
 double sampsonCost(const TwoViewData& data, const std::vector<int>& inliers,
                    const Eigen::Matrix3d& F, size_t stride = 1)
 {
