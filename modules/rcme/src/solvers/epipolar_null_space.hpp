@@ -35,8 +35,10 @@ bool epipolarNullSpace(const Eigen::Vector3d* x1, const Eigen::Vector3d* x2, dou
     const Eigen::ColPivHouseholderQR<Eigen::Matrix<double, 9, M>> qr(At);
     if (!(std::abs(qr.matrixQR()(M - 1, M - 1)) > rankTolerance * std::abs(qr.matrixQR()(0, 0))))
         return false;
-    const Eigen::Matrix<double, 9, 9> Q = qr.householderQ();
-    basis = Q.template rightCols<9 - M>();
+    // Q's last columns: the Householder reflections applied to the last unit vectors only.
+    basis.setZero();
+    basis.template bottomRows<9 - M>().setIdentity();
+    basis.applyOnTheLeft(qr.householderQ());
     return basis.allFinite();
 }
 

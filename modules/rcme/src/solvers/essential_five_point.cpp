@@ -253,7 +253,7 @@ lowers the residual. Without them the singular values of E were (s, s, 0) only t
 of 10^4 noise-free samples (close roots), with them to ~1e-15. */
 void polishRoot(const Eigen::Matrix<double, 10, kMonomials>& M, Eigen::Vector3d& p)
 {
-    constexpr int kSteps = 3;
+    constexpr int kSteps = 8;
     Eigen::Matrix<double, kMonomials, 1> m;
     Eigen::Matrix<double, kMonomials, 3> dm;
     monomials(p, m, dm);
