@@ -190,7 +190,7 @@ TEST(Rcme_Cheirality, points_split_between_twisted_pairs_admit_no_common_cheiral
         std::copy(q2, q2 + 5, flipped);
         // The mirror of q2[0] in the epipolar plane through t keeps the epipolar constraint.
         const Eigen::Vector3d n = t.cross(q2[0]).normalized();
-        flipped[0] = q2[0] - 2 * (q2[0] - t * t.dot(q2[0])); // 2 t (t.q) - q: same plane
+        flipped[0] = 2 * t.dot(q2[0]) * t - q2[0];
         ASSERT_LT(std::abs(flipped[0].dot(n)), 1e-12);
         EXPECT_FALSE(admitsCommonCheirality(E, q1, flipped, 5)) << "trial " << trial;
     }

@@ -223,9 +223,9 @@ std::unique_ptr<Refiner> createGoldStandardRefiner(int maxIterations);
 //! (7 parameters for 7 DoF). With calibrated data the solutions are projected to E when
 //! `essentialHypotheses` is set, like the 8-point solver.
 std::unique_ptr<MinimalSolver> createSevenPointSolver(bool essentialHypotheses);
-//! 5-point solver for E (Stewenius, Engels & Nister 2006; calibrated data only): up to ten
-//! essential matrices per sample, exact (5 parameters for 5 DoF), returned with model.E and
-//! model.F set.
+//! 5-point solver for E (Nister 2004, solvers/essential_five_point.cpp; calibrated data only):
+//! up to ten essential matrices per sample, exact (5 parameters for 5 DoF), returned with model.E
+//! and model.F set; those that cannot put the whole sample in front of both cameras are dropped.
 std::unique_ptr<MinimalSolver> createFivePointSolver();
 //! MLESAC's scorer (Torr & Zisserman 2000): negative log-likelihood of a Gaussian-inlier,
 //! uniform-outlier mixture of the Sampson distances, mixing weight by a few EM steps.

@@ -47,28 +47,21 @@ RCME_VECTOR_CLONES int bandLoop(const double* f, const double* a, const double* 
     return static_cast<int>(count);
 }
 
-using Loop = int (*)(const double*, const double*, const double*, size_t, double, uchar*);
-
-// Runs a loop on the row-major entries of M and the points as contiguous (x, y) pairs.
-int runLoop(Loop withMask, Loop countOnly, const Eigen::Matrix3d& M,
-            const std::vector<Eigen::Vector2d>& points1,
-            const std::vector<Eigen::Vector2d>& points2, double thresholdSquared, uchar* mask)
-{
-    CV_DbgAssert(points1.size() == points2.size());
-    const Eigen::Matrix<double, 3, 3, Eigen::RowMajor> m = M;
-    if (points1.empty())
-        return 0;
-    return (mask ? withMask : countOnly)(m.data(), points1.data()->data(), points2.data()->data(),
-                                         points1.size(), thresholdSquared, mask);
-}
-
 } // namespace
 
 int countInSampsonBand(const Eigen::Matrix3d& F, const std::vector<Eigen::Vector2d>& points1,
                        const std::vector<Eigen::Vector2d>& points2, double thresholdSquared,
                        uchar* mask)
 {
-    return runLoop(bandLoop<true>, bandLoop<false>, F, points1, points2, thresholdSquared, mask);
+    CV_DbgAssert(points1.size() == points2.size());
+    if (points1.empty())
+        return 0;
+    // Row-major entries of F; the points are contiguous (x, y) pairs.
+    const Eigen::Matrix<double, 3, 3, Eigen::RowMajor> f = F;
+    const double* a = points1.data()->data();
+    const double* b = points2.data()->data();
+    return mask ? bandLoop<true>(f.data(), a, b, points1.size(), thresholdSquared, mask)
+                : bandLoop<false>(f.data(), a, b, points1.size(), thresholdSquared, nullptr);
 }
 
 } // namespace detail
