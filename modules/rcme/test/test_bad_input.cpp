@@ -152,6 +152,8 @@ TEST(Rcme_BadInput, bad_params_throw_naming_the_field)
         {"Params.method", [](Params& p) { p.method = static_cast<Method>(3); }},
         {"Params.sampler", [](Params& p) { p.sampler = static_cast<SamplerKind>(9); }},
         {"Params.solver", [](Params& p) { p.solver = static_cast<MinimalSolverKind>(9); }},
+        {"Params.verification",
+         [](Params& p) { p.verification = static_cast<VerificationKind>(3); }},
         {"Params.sigma", [](Params& p) { p.sigma = 0; }},
         {"Params.sigma", [](Params& p) { p.sigma = NAN; }},
         {"Params.threshold", [](Params& p) { p.threshold = INFINITY; }},

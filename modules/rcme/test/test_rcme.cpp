@@ -303,6 +303,34 @@ TEST(Rcme_Boxes, propagated_covariance_matches_monte_carlo)
     EXPECT_NEAR(ratio, 1.0, 0.25);
 }
 
+TEST(Rcme_Boxes, band_sprt_keeps_the_true_model_and_rejects_bad_ones_early)
+{
+    const SyntheticScene s = scene(SCENE_GENERIC, 12, 0.5);
+    const TwoViewData data = sceneData(s, true, false);
+    Model truth = trueMotion(s, data);
+    Model bad = truth;
+    bad.R = bad.R * rotationExp(Eigen::Vector3d(0.2, -0.15, 0.1));
+    bad.E = skew(bad.t) * bad.R;
+    bad.F = fundamentalFromEssential(bad.E, data.Kinv);
+
+    const Params params = rcmeParams(0, METHOD_STANDARD);
+    int trueRejected = 0;
+    for (int trial = 0; trial < 1000; ++trial) {
+        auto sprt = createBandSprtVerifier(data, params, static_cast<uint64_t>(trial));
+        trueRejected += !sprt->isModelGood(data, {}, truth);
+    }
+    EXPECT_EQ(trueRejected, 0);
+
+    auto sprt = createBandSprtVerifier(data, params, 1);
+    constexpr int kBadTrials = 100;
+    for (int trial = 0; trial < kBadTrials; ++trial)
+        EXPECT_FALSE(sprt->isModelGood(data, {}, bad));
+    const double meanChecked = static_cast<double>(sprt->pointsChecked()) / kBadTrials;
+    std::cout << "band SPRT: " << meanChecked << " of " << data.size()
+              << " points checked per bad hypothesis" << std::endl;
+    EXPECT_LT(meanChecked, 0.25 * data.size());
+}
+
 #endif // RCME_STANDALONE_TESTS
 
 } // namespace
@@ -370,6 +398,55 @@ TEST(Rcme_Baselines, cov_ransac_bands_do_not_take_in_the_outliers)
             // wrong motion puts a third of its band behind them (111 and 124 kept).
             EXPECT_GE(r.inlierCount, withK ? 100 : 150) << "seed " << seed << " K " << withK;
         }
+}
+
+// Params::verification: SPRT on request for every method (fewer points per hypothesis, the motion
+// still right), none on request for Cov-RANSAC, and by default from kSprtMinPoints on.
+TEST(Rcme_Baselines, every_method_verifies_by_sprt_on_request)
+{
+    const SyntheticScene s = scene(SCENE_GENERIC, 4);
+    const double n = static_cast<double>(s.points1.rows);
+    for (Method method : {METHOD_STANDARD, METHOD_MLESAC, METHOD_RCME, METHOD_COV_RANSAC}) {
+        Params params = rcmeParams(4, method);
+        params.verification = VERIFICATION_NONE;
+        const Report full = estimateRelativeMotion(s.points1, s.points2, s.cameraMatrix, params);
+        params.verification = VERIFICATION_SPRT;
+        const Report sprt = estimateRelativeMotion(s.points1, s.points2, s.cameraMatrix, params);
+        ASSERT_EQ(sprt.status, STATUS_SUCCESS) << "method " << static_cast<int>(method);
+        EXPECT_LT(compareMotion(sprt.R, sprt.t, s.R, s.t).rotationDeg, 1.0)
+            << "method " << static_cast<int>(method);
+        // RCME's consistency test checks the sample's points first; the rest is scoring.
+        if (method != METHOD_RCME)
+            EXPECT_DOUBLE_EQ(full.pointsPerHypothesis, n) << "method " << static_cast<int>(method);
+        EXPECT_LT(sprt.pointsPerHypothesis, 0.6 * full.pointsPerHypothesis)
+            << "method " << static_cast<int>(method);
+    }
+}
+
+TEST(Rcme_Baselines, automatic_verification_is_sprt_on_large_inputs_only)
+{
+    SceneParams small;
+    small.kind = SCENE_GENERIC;
+    small.numPoints = 2000;
+    small.seed = 5;
+    SceneParams large = small;
+    large.numPoints = 20000;
+    for (const SceneParams& sp : {small, large}) {
+        const SyntheticScene s = generateScene(sp);
+        Params params = rcmeParams(5, METHOD_STANDARD);
+        const Report automatic =
+            estimateRelativeMotion(s.points1, s.points2, s.cameraMatrix, params);
+        params.verification = VERIFICATION_NONE;
+        const Report full = estimateRelativeMotion(s.points1, s.points2, s.cameraMatrix, params);
+        ASSERT_EQ(automatic.status, STATUS_SUCCESS) << sp.numPoints;
+        if (sp.numPoints < 20000) {
+            EXPECT_EQ(automatic.pointsPerHypothesis, full.pointsPerHypothesis);
+            EXPECT_EQ(cv::norm(automatic.F, full.F, NORM_INF), 0.0);
+        } else {
+            EXPECT_LT(automatic.pointsPerHypothesis, 0.6 * full.pointsPerHypothesis);
+            EXPECT_LT(compareMotion(automatic.R, automatic.t, s.R, s.t).rotationDeg, 0.2);
+        }
+    }
 }
 
 TEST(Rcme_Baselines, seven_and_five_point_solvers_for_every_method)

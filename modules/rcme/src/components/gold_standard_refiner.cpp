@@ -167,18 +167,27 @@ double levenbergMarquardt(const TwoViewData& data, const std::vector<int>& inlie
 // final estimate then takes a few more iterations on every point.
 constexpr int kFullSetIterations = 3;
 
+// 1 up to kMaxIteratedPoints, else the stride that leaves at most that many.
+size_t iterationStride(size_t count)
+{
+    return std::max<size_t>(1, (count + kMaxIteratedPoints - 1) / kMaxIteratedPoints);
+}
+
+template <class Problem>
+void finishOnEveryPoint(const TwoViewData& data, const std::vector<int>& inliers, Problem& problem,
+                        int maxIterations)
+{
+    if (inliers.size() > kMaxIteratedPoints)
+        levenbergMarquardt(data, inliers, problem, std::min(maxIterations, kFullSetIterations));
+}
+
 template <class Problem>
 void leastSquares(const TwoViewData& data, const std::vector<int>& inliers, Problem& problem,
-                  int maxIterations, bool finishOnEveryPoint)
+                  int maxIterations, bool finish)
 {
-    if (inliers.size() <= kMaxIteratedPoints) {
-        levenbergMarquardt(data, inliers, problem, maxIterations);
-        return;
-    }
-    const size_t stride = (inliers.size() + kMaxIteratedPoints - 1) / kMaxIteratedPoints;
-    levenbergMarquardt(data, inliers, problem, maxIterations, stride);
-    if (finishOnEveryPoint)
-        levenbergMarquardt(data, inliers, problem, std::min(maxIterations, kFullSetIterations));
+    levenbergMarquardt(data, inliers, problem, maxIterations, iterationStride(inliers.size()));
+    if (finish)
+        finishOnEveryPoint(data, inliers, problem, maxIterations);
 }
 
 // Fewest residual degrees of freedom (inliers minus the model's) for the estimated noise to
@@ -195,15 +204,21 @@ enum class Uncertainty
 
 // sigma^2 (J^T J)^-1 at the problem's state, with the directions it refers to. None when J^T J is
 // ill-conditioned: the points do not determine the model (e.g. a degenerate minimal sample).
+// A hypothesis's or decision's covariance (kStatedNoise) on a large set comes from its evenly
+// spaced subset, J^T J scaled to the whole set; the final estimate's from every point.
 template <class Problem>
 void setUncertainty(const TwoViewData& data, const std::vector<int>& indices,
-                    const Problem& problem, Model& model)
+                    const Problem& problem, Model& model, bool everyPoint = true)
 {
     constexpr int P = Problem::kDof;
     constexpr double kConditionLimit = 1e-10;
     Eigen::Matrix<double, P, P> JtJ;
     Eigen::Matrix<double, P, 1> Jtr;
-    normalEquations(data, indices, problem, JtJ, Jtr);
+    const size_t stride = everyPoint ? 1 : iterationStride(indices.size());
+    normalEquations(data, indices, problem, JtJ, Jtr, stride);
+    if (stride > 1)
+        JtJ *= static_cast<double>(indices.size()) /
+               static_cast<double>((indices.size() + stride - 1) / stride);
     const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, P, P>> eig(JtJ);
     model.uncertaintyDof = 0;
     if (!(eig.eigenvalues()(0) > kConditionLimit * eig.eigenvalues()(P - 1)))
@@ -291,7 +306,7 @@ void setUncertaintyFor(Uncertainty kind, const TwoViewData& data, const std::vec
     if (kind == Uncertainty::kFinalEstimate)
         setFinalUncertainty(data, indices, problem, model);
     else
-        setUncertainty(data, indices, problem, model);
+        setUncertainty(data, indices, problem, model, /*everyPoint=*/false);
 }
 
 // Least squares on `indices`; the final estimate is refitted without the inliers the others do
@@ -302,7 +317,8 @@ void fitProblem(const TwoViewData& data, const std::vector<int>& indices, int ma
                 std::vector<int>* confirmed)
 {
     const bool final = uncertainty == Uncertainty::kFinalEstimate;
-    leastSquares(data, indices, problem, maxIterations, final);
+    // On a large set the iterations on every point wait until the inliers are settled.
+    leastSquares(data, indices, problem, maxIterations, final && !confirmed);
     if (final && confirmed) {
         *confirmed = indices;
         if (dropUnconfirmedInliers(data, problem, *confirmed) &&
@@ -312,6 +328,7 @@ void fitProblem(const TwoViewData& data, const std::vector<int>& indices, int ma
             return;
         }
         *confirmed = indices;
+        finishOnEveryPoint(data, indices, problem, maxIterations);
     }
     setUncertaintyFor(uncertainty, data, indices, problem, model);
 }

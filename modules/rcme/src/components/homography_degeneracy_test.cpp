@@ -107,9 +107,19 @@ HomographyComparison compareWithHomography(const TwoViewData& data, const Eigen:
     // 200 iterations: H can only win when it explains most of the candidates (F's per-point
     // penalty is log 4), and then 200 four-point samples find it with certainty.
     const double transferThreshold = data.sigma * std::sqrt(2.0 * chiSquareQuantile(0.95, 2));
-    // OpenCV's RANSAC here draws from a fixed seed, so the result is reproducible.
+    // OpenCV's RANSAC here draws from a fixed seed, so the result is reproducible. A large set
+    // is searched on an evenly spaced subset (kMaxIteratedPoints): twenty thousand points decide
+    // whether a homography explains them; the comparison below takes every candidate.
+    std::vector<Point2d> search1, search2;
+    const size_t stride = (candidates1.size() + kMaxIteratedPoints - 1) / kMaxIteratedPoints;
+    if (stride > 1)
+        for (size_t i = 0; i < candidates1.size(); i += stride) {
+            search1.push_back(candidates1[i]);
+            search2.push_back(candidates2[i]);
+        }
     const Mat Hmat =
-        findHomography(candidates1, candidates2, RANSAC, transferThreshold, noArray(), 200, 0.999);
+        findHomography(stride > 1 ? search1 : candidates1, stride > 1 ? search2 : candidates2,
+                       RANSAC, transferThreshold, noArray(), 200, 0.999);
     if (Hmat.empty())
         return result;
     Eigen::Matrix3d H;

@@ -2,8 +2,8 @@
 // found in the top-level directory of this distribution.
 
 // Wald's sequential probability ratio test as a model verifier (Matas & Chum, "Randomized RANSAC
-// with sequential probability ratio test", ICCV 2005), as Cov-RANSAC uses it: the points are
-// checked in a fixed random order, and after each one the likelihood ratio
+// with sequential probability ratio test", ICCV 2005): the points are checked in a fixed random
+// order, and after each one the likelihood ratio
 //     lambda_j = prod_r p(x_r | bad model) / p(x_r | good model)
 // grows by delta / epsilon for a consistent point and by (1 - delta) / (1 - epsilon) for an
 // inconsistent one; the hypothesis is rejected as soon as lambda_j > A. epsilon is the inlier
@@ -11,14 +11,17 @@
 // delta the consistent ratio of a bad one (the mean over rejected hypotheses); A follows them,
 // from the paper's fixed point A = t_M C + 1 + log A (t_M: the cost of a hypothesis in point
 // checks, C: the expected log-ratio per point of a bad model). Consistency is the scorer's own
-// test (propagated uncertainty), so a hypothesis that passes is scored on the same terms.
+// test, so a hypothesis that passes is scored on the same terms: the propagated uncertainty
+// (Cov-RANSAC, RCME) or the threshold's Sampson band (Standard, MLESAC).
 
 #include "components/random.hpp"
 #include "components/residual_uncertainty.hpp"
 #include "framework/components.hpp"
+#include "geometry/residual_bands.hpp"
 #include "geometry/statistics.hpp"
 
 #include <numeric>
+#include <optional>
 
 namespace cv {
 namespace rcme {
@@ -26,46 +29,117 @@ namespace detail {
 
 namespace {
 
-// A hypothesis costs about as much as checking this many points: the minimal solve, the
-// instantiation's fit on its sample and the covariance (measured order of magnitude).
-constexpr double kModelCostInPoints = 200.0;
-
-class SprtVerifier final : public ModelVerifier
+// The consistency test of the propagated uncertainty: d^2 <= bound * v (the paper's eq. 4).
+// Point by point, as Cov-RANSAC's test is.
+class UncertaintyConsistency
 {
 public:
-    SprtVerifier(const TwoViewData& data, const Params& params, uint64_t seed)
-        : sigma_(data.sigma),
-          inlierBound_(chiSquareQuantile(1.0 - params.alpha, params.consistencyDof)),
-          order_(data.points1.size())
-    {
-        std::iota(order_.begin(), order_.end(), 0);
-        // A fixed pseudo-random order, so a run is reproducible (Fisher-Yates).
-        uint64_t state = seed ^ 0x5851F42D4C957F2Dull;
-        for (size_t i = order_.size(); i > 1; --i)
-            std::swap(order_[i - 1], order_[uniformBelow(state, static_cast<uint32_t>(i))]);
-        updateThreshold();
-    }
+    static constexpr size_t kBlock = 1;
+    // A hypothesis costs about as much as checking this many points: the minimal solve, the
+    // instantiation's fit on its sample and the covariance (measured order of magnitude).
+    static constexpr double kModelCostInPoints = 200.0;
 
-    bool isModelGood(const TwoViewData& data, const std::vector<int>&, Model& model) override
+    UncertaintyConsistency(const TwoViewData& data, const Params& params)
+        : sigma_(data.sigma), bound_(chiSquareQuantile(1.0 - params.alpha, params.consistencyDof))
+    {
+    }
+    bool prepare(const Model& model)
     {
         if (model.uncertaintyDof == 0)
             return false;
-        const ResidualUncertainty uncertainty(model, sigma_);
+        uncertainty_.emplace(model, sigma_);
+        return true;
+    }
+    int countConsistent(const Eigen::Vector2d* points1, const Eigen::Vector2d* points2,
+                        size_t count) const
+    {
+        int consistent = 0;
+        for (size_t i = 0; i < count; ++i) {
+            double distanceSquared = 0, variance = 0;
+            uncertainty_->evaluate(points1[i], points2[i], false, distanceSquared, variance);
+            consistent += distanceSquared <= bound_ * variance;
+        }
+        return consistent;
+    }
+
+private:
+    double sigma_;
+    double bound_;
+    std::optional<ResidualUncertainty> uncertainty_;
+};
+
+// The threshold's Sampson band, in blocks of points with the scorer's vectorized kernel: the
+// ratio is tested after each block, so a bad hypothesis is rejected up to a block later than a
+// point-by-point test would, for a third of the time per point.
+class BandConsistency
+{
+public:
+    static constexpr size_t kBlock = 16;
+    // A minimal solve (about 1.5 us per hypothesis of the 5- and 8-point solvers) against about
+    // 1.2 ns per point in the band kernel.
+    static constexpr double kModelCostInPoints = 1000.0;
+
+    BandConsistency(const TwoViewData& data, const Params&)
+        : thresholdSquared_(data.threshold * data.threshold)
+    {
+    }
+    bool prepare(const Model& model)
+    {
+        F_ = model.F;
+        return true;
+    }
+    int countConsistent(const Eigen::Vector2d* points1, const Eigen::Vector2d* points2,
+                        size_t count) const
+    {
+        return countInSampsonBand(F_, points1, points2, count, thresholdSquared_);
+    }
+
+private:
+    double thresholdSquared_;
+    Eigen::Matrix3d F_;
+};
+
+template <class Consistency> class SprtVerifier final : public ModelVerifier
+{
+public:
+    SprtVerifier(const TwoViewData& data, const Params& params, uint64_t seed)
+        : consistency_(data, params)
+    {
+        std::vector<int> order(data.points1.size());
+        std::iota(order.begin(), order.end(), 0);
+        // A fixed pseudo-random order, so a run is reproducible (Fisher-Yates). The points are
+        // copied in that order: a test reads them front to back, not scattered over a large set.
+        uint64_t state = seed ^ 0x5851F42D4C957F2Dull;
+        for (size_t i = order.size(); i > 1; --i)
+            std::swap(order[i - 1], order[uniformBelow(state, static_cast<uint32_t>(i))]);
+        ordered1_.reserve(order.size());
+        ordered2_.reserve(order.size());
+        for (int i : order) {
+            ordered1_.push_back(data.points1[static_cast<size_t>(i)]);
+            ordered2_.push_back(data.points2[static_cast<size_t>(i)]);
+        }
+        updateThreshold();
+    }
+
+    bool isModelGood(const TwoViewData&, const std::vector<int>&, Model& model) override
+    {
+        if (!consistency_.prepare(model))
+            return false;
         // In logarithms: the product of hundreds of factors would over- or underflow.
         const double consistentStep = std::log(delta_ / epsilon_);
         const double inconsistentStep = std::log((1.0 - delta_) / (1.0 - epsilon_));
         const double logThreshold = std::log(threshold_);
         double logRatio = 0.0;
         int checked = 0, consistent = 0;
-        for (int i : order_) {
-            double distanceSquared = 0, variance = 0;
-            uncertainty.evaluate(data.points1[static_cast<size_t>(i)],
-                                 data.points2[static_cast<size_t>(i)], false, distanceSquared,
-                                 variance);
-            ++checked;
-            const bool isConsistent = distanceSquared <= inlierBound_ * variance;
-            consistent += isConsistent;
-            logRatio += isConsistent ? consistentStep : inconsistentStep;
+        const size_t n = ordered1_.size();
+        for (size_t start = 0; start < n; start += Consistency::kBlock) {
+            const size_t count = std::min(Consistency::kBlock, n - start);
+            const int inBlock = consistency_.countConsistent(ordered1_.data() + start,
+                                                             ordered2_.data() + start, count);
+            checked += static_cast<int>(count);
+            consistent += inBlock;
+            logRatio += inBlock * consistentStep +
+                        static_cast<double>(static_cast<int>(count) - inBlock) * inconsistentStep;
             if (logRatio > logThreshold) {
                 record(checked, true, static_cast<double>(consistent) / checked);
                 return false;
@@ -109,15 +183,15 @@ private:
         epsilon_ = std::max(epsilon_, 1.5 * delta_);
         const double C = (1.0 - delta_) * std::log((1.0 - delta_) / (1.0 - epsilon_)) +
                          delta_ * std::log(delta_ / epsilon_);
-        double A = kModelCostInPoints * C + 1.0;
+        constexpr double cost = Consistency::kModelCostInPoints;
+        double A = cost * C + 1.0;
         for (int i = 0; i < 10; ++i)
-            A = kModelCostInPoints * C + 1.0 + std::log(A);
+            A = cost * C + 1.0 + std::log(A);
         threshold_ = std::max(A, 1.0 + 1e-9);
     }
 
-    double sigma_;
-    double inlierBound_;
-    std::vector<int> order_;
+    Consistency consistency_;
+    std::vector<Eigen::Vector2d> ordered1_, ordered2_;
     double epsilon_ = 0.1; //!< conservative starting values, as the paper suggests
     double delta_ = 0.01;
     double threshold_ = 1.0;
@@ -131,7 +205,13 @@ private:
 std::unique_ptr<ModelVerifier> createSprtVerifier(const TwoViewData& data, const Params& params,
                                                   uint64_t seed)
 {
-    return std::make_unique<SprtVerifier>(data, params, seed);
+    return std::make_unique<SprtVerifier<UncertaintyConsistency>>(data, params, seed);
+}
+
+std::unique_ptr<ModelVerifier> createBandSprtVerifier(const TwoViewData& data, const Params& params,
+                                                      uint64_t seed)
+{
+    return std::make_unique<SprtVerifier<BandConsistency>>(data, params, seed);
 }
 
 } // namespace detail

@@ -236,6 +236,9 @@ std::unique_ptr<Scorer> createMlesacScorer(const TwoViewData& data, const Params
 //! delta; points in a fixed pseudo-random order from `seed`.
 std::unique_ptr<ModelVerifier> createSprtVerifier(const TwoViewData& data, const Params& params,
                                                   uint64_t seed);
+//! The same SPRT on the threshold's Sampson band (the consistency of Standard and MLESAC).
+std::unique_ptr<ModelVerifier> createBandSprtVerifier(const TwoViewData& data, const Params& params,
+                                                      uint64_t seed);
 //! Cov-RANSAC's scorer: inliers by propagated uncertainty, most inliers wins.
 std::unique_ptr<Scorer> createCovarianceInlierScorer(const TwoViewData& data, const Params& params,
                                                      int sampleSize);

@@ -34,6 +34,19 @@ std::vector<int> qualityOrder(const Mat& quality, int pointCount)
     return order;
 }
 
+// Whether hypotheses go through SPRT before scoring (Params::verification).
+bool usesSprt(const Params& params, const TwoViewData& data)
+{
+    switch (params.verification) {
+    case VERIFICATION_SPRT:
+        return true;
+    case VERIFICATION_NONE:
+        return false;
+    default:
+        return params.method == METHOD_COV_RANSAC || data.size() >= kSprtMinPoints;
+    }
+}
+
 // A few steps suffice: the refit only has to reach its basin's bottom, and it runs often.
 constexpr int kLocalOptimizationIterations = 5;
 
@@ -94,12 +107,17 @@ EstimatorComponents createEstimator(const Params& params, const TwoViewData& dat
         c.scorer = createMlesacScorer(data, params, m);
         break;
     case METHOD_COV_RANSAC:
-        c.verifiers.push_back(
-            createSprtVerifier(data, params, static_cast<uint64_t>(params.randomGeneratorState)));
         c.scorer = createCovarianceInlierScorer(data, params, m);
         break;
     default:
         CV_Error(Error::StsNotImplemented, "Params.method: not implemented yet");
+    }
+    if (usesSprt(params, data)) {
+        // The method's own inlier test is SPRT's consistency: propagated uncertainty where the
+        // hypotheses carry it, the threshold's band otherwise.
+        const uint64_t seed = static_cast<uint64_t>(params.randomGeneratorState);
+        c.verifiers.push_back(uncertain ? createSprtVerifier(data, params, seed)
+                                        : createBandSprtVerifier(data, params, seed));
     }
     if (params.refine && params.refineIterations > 0)
         c.refiner = createGoldStandardRefiner(params.refineIterations);

@@ -135,6 +135,10 @@ void validateParams(const Params& p)
         p.solver != SOLVER_FIVE_POINT && p.solver != SOLVER_AUTO)
         CV_Error(Error::StsBadArg,
                  cv::format("Params.solver: unknown value %d", static_cast<int>(p.solver)));
+    if (p.verification != VERIFICATION_AUTO && p.verification != VERIFICATION_NONE &&
+        p.verification != VERIFICATION_SPRT)
+        CV_Error(Error::StsBadArg, cv::format("Params.verification: unknown value %d",
+                                              static_cast<int>(p.verification)));
     checkRange(std::isfinite(p.sigma) && p.sigma > 0, "Params.sigma must be positive and finite");
     checkRange(std::isfinite(p.threshold), "Params.threshold must be finite (<= 0: from sigma)");
     checkRange(p.confidence > 0 && p.confidence < 1, "Params.confidence must be in (0, 1)");

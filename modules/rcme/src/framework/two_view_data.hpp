@@ -32,6 +32,12 @@ costs ~0.15 s. The final estimate finishes on every point. No real pair of the b
 near it, so below it nothing changes. */
 constexpr size_t kMaxIteratedPoints = 20000;
 
+/** From this many points on, VERIFICATION_AUTO verifies hypotheses by SPRT before scoring: a
+hypothesis scored on every point costs more than its minimal solve from about a thousand points
+on, and most hypotheses are contaminated. The same bound as kMaxIteratedPoints, so the
+benchmark's pairs keep the exhaustive scoring. */
+constexpr int kSprtMinPoints = static_cast<int>(kMaxIteratedPoints);
+
 //! Every k-th correspondence of `data` (k the smallest that leaves at most `maxPoints`), with its
 //! camera and noise: the subset on which a decision about a large problem is made.
 TwoViewData evenlySpacedSubset(const TwoViewData& data, size_t maxPoints);

@@ -49,19 +49,27 @@ RCME_VECTOR_CLONES int bandLoop(const double* f, const double* a, const double* 
 
 } // namespace
 
+int countInSampsonBand(const Eigen::Matrix3d& F, const Eigen::Vector2d* points1,
+                       const Eigen::Vector2d* points2, size_t count, double thresholdSquared,
+                       uchar* mask)
+{
+    if (count == 0)
+        return 0;
+    // Row-major entries of F; the points are contiguous (x, y) pairs.
+    const Eigen::Matrix<double, 3, 3, Eigen::RowMajor> f = F;
+    const double* a = points1->data();
+    const double* b = points2->data();
+    return mask ? bandLoop<true>(f.data(), a, b, count, thresholdSquared, mask)
+                : bandLoop<false>(f.data(), a, b, count, thresholdSquared, nullptr);
+}
+
 int countInSampsonBand(const Eigen::Matrix3d& F, const std::vector<Eigen::Vector2d>& points1,
                        const std::vector<Eigen::Vector2d>& points2, double thresholdSquared,
                        uchar* mask)
 {
     CV_DbgAssert(points1.size() == points2.size());
-    if (points1.empty())
-        return 0;
-    // Row-major entries of F; the points are contiguous (x, y) pairs.
-    const Eigen::Matrix<double, 3, 3, Eigen::RowMajor> f = F;
-    const double* a = points1.data()->data();
-    const double* b = points2.data()->data();
-    return mask ? bandLoop<true>(f.data(), a, b, points1.size(), thresholdSquared, mask)
-                : bandLoop<false>(f.data(), a, b, points1.size(), thresholdSquared, nullptr);
+    return countInSampsonBand(F, points1.data(), points2.data(), points1.size(), thresholdSquared,
+                              mask);
 }
 
 } // namespace detail

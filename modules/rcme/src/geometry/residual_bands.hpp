@@ -19,6 +19,11 @@ int countInSampsonBand(const Eigen::Matrix3d& F, const std::vector<Eigen::Vector
                        const std::vector<Eigen::Vector2d>& points2, double thresholdSquared,
                        uchar* mask = nullptr);
 
+//! The same on `count` correspondences from points1[0] and points2[0] (a block of a set).
+int countInSampsonBand(const Eigen::Matrix3d& F, const Eigen::Vector2d* points1,
+                       const Eigen::Vector2d* points2, size_t count, double thresholdSquared,
+                       uchar* mask = nullptr);
+
 } // namespace detail
 } // namespace rcme
 } // namespace cv

@@ -60,6 +60,25 @@ enum MinimalSolverKind
     SOLVER_AUTO = 3
 };
 
+/** How much of the data a hypothesis is verified on before it is scored. */
+enum VerificationKind
+#ifndef OPENCV_BINDING_PARSER // OpenCV 4.6's binding generator cannot read an enum base
+    : int
+#endif
+{
+    /** SPRT for #METHOD_COV_RANSAC (part of the method) and, for every method, from 20000
+    correspondences on; below that every hypothesis is scored on every point */
+    VERIFICATION_AUTO = 0,
+    VERIFICATION_NONE = 1, //!< every hypothesis is scored on every point (Cov-RANSAC too)
+    /** Wald's sequential probability ratio test @cite Matas2005SPRT before scoring: the points
+    are checked in a fixed random order and a hypothesis is dropped as soon as its consistent
+    share is unlikely for a good model. Consistency is the method's inlier test: the propagated
+    uncertainty for the RCME family and Cov-RANSAC, the threshold's band for Standard and
+    MLESAC. A good hypothesis is dropped with a small probability, so results differ from
+    #VERIFICATION_NONE's */
+    VERIFICATION_SPRT = 2
+};
+
 /** @brief Outcome of an estimation. Every estimating function reports one.
 
 Only #STATUS_SUCCESS comes with a model, and #STATUS_PURE_ROTATION with a rotation; with any
@@ -133,6 +152,10 @@ struct CV_EXPORTS_W_SIMPLE Params
     CV_PROP_RW SamplerKind sampler;
     //! Minimal solver. Default #SOLVER_AUTO (the paper's experiments: #SOLVER_EIGHT_POINT).
     CV_PROP_RW MinimalSolverKind solver;
+    /** Verification before scoring. Default #VERIFICATION_AUTO: SPRT for Cov-RANSAC and on
+    large inputs (from 20000 correspondences), where scoring every point of every hypothesis
+    dominates the time (doc/performance.md, "Large inputs"). */
+    CV_PROP_RW VerificationKind verification;
     //! Standard deviation of the point noise, pixels per coordinate (assumption a.2). Default 1.
     CV_PROP_RW double sigma;
     /** Inlier threshold on the Sampson distance to the epipolar geometry, pixels. When <= 0

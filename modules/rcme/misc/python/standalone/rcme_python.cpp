@@ -672,6 +672,9 @@ PYBIND11_MODULE(_rcme, m)
     m.attr("SOLVER_SEVEN_POINT") = static_cast<int>(SOLVER_SEVEN_POINT);
     m.attr("SOLVER_FIVE_POINT") = static_cast<int>(SOLVER_FIVE_POINT);
     m.attr("SOLVER_AUTO") = static_cast<int>(SOLVER_AUTO);
+    m.attr("VERIFICATION_AUTO") = static_cast<int>(VERIFICATION_AUTO);
+    m.attr("VERIFICATION_NONE") = static_cast<int>(VERIFICATION_NONE);
+    m.attr("VERIFICATION_SPRT") = static_cast<int>(VERIFICATION_SPRT);
     m.attr("STATUS_SUCCESS") = static_cast<int>(STATUS_SUCCESS);
     m.attr("STATUS_POOR_QUALITY_INPUT") = static_cast<int>(STATUS_POOR_QUALITY_INPUT);
     m.attr("STATUS_NOT_ENOUGH_POINTS") = static_cast<int>(STATUS_NOT_ENOUGH_POINTS);
@@ -708,6 +711,9 @@ PYBIND11_MODULE(_rcme, m)
         .enumInt("sampler", &Params::sampler, "SAMPLER_*; default SAMPLER_UNIFORM")
         .enumInt("solver", &Params::solver,
                  "SOLVER_*; default SOLVER_AUTO (5-point with K, else 8-point)")
+        .enumInt("verification", &Params::verification,
+                 "VERIFICATION_*; default VERIFICATION_AUTO (SPRT for Cov-RANSAC and from 20000 "
+                 "points on)")
         .plain("sigma", &Params::sigma, "noise standard deviation, pixels; default 1")
         .plain("threshold", &Params::threshold, "Sampson threshold, pixels; <= 0: 1.96 sigma")
         .plain("confidence", &Params::confidence, "default 0.99")
