@@ -167,12 +167,6 @@ double levenbergMarquardt(const TwoViewData& data, const std::vector<int>& inlie
 // final estimate then takes a few more iterations on every point.
 constexpr int kFullSetIterations = 3;
 
-// 1 up to kMaxIteratedPoints, else the stride that leaves at most that many.
-size_t iterationStride(size_t count)
-{
-    return std::max<size_t>(1, (count + kMaxIteratedPoints - 1) / kMaxIteratedPoints);
-}
-
 template <class Problem>
 void finishOnEveryPoint(const TwoViewData& data, const std::vector<int>& inliers, Problem& problem,
                         int maxIterations)
@@ -185,7 +179,7 @@ template <class Problem>
 void leastSquares(const TwoViewData& data, const std::vector<int>& inliers, Problem& problem,
                   int maxIterations, bool finish)
 {
-    levenbergMarquardt(data, inliers, problem, maxIterations, iterationStride(inliers.size()));
+    levenbergMarquardt(data, inliers, problem, maxIterations, subsetStride(inliers.size()));
     if (finish)
         finishOnEveryPoint(data, inliers, problem, maxIterations);
 }
@@ -204,8 +198,8 @@ enum class Uncertainty
 
 // sigma^2 (J^T J)^-1 at the problem's state, with the directions it refers to. None when J^T J is
 // ill-conditioned: the points do not determine the model (e.g. a degenerate minimal sample).
-// A hypothesis's or decision's covariance (kStatedNoise) on a large set comes from its evenly
-// spaced subset, J^T J scaled to the whole set; the final estimate's from every point.
+// Unless everyPoint (the final estimate), a large set gives J^T J from its evenly spaced subset,
+// scaled to the whole set: a hypothesis's or a decision's covariance needs no more.
 template <class Problem>
 void setUncertainty(const TwoViewData& data, const std::vector<int>& indices,
                     const Problem& problem, Model& model, bool everyPoint = true)
@@ -214,7 +208,7 @@ void setUncertainty(const TwoViewData& data, const std::vector<int>& indices,
     constexpr double kConditionLimit = 1e-10;
     Eigen::Matrix<double, P, P> JtJ;
     Eigen::Matrix<double, P, 1> Jtr;
-    const size_t stride = everyPoint ? 1 : iterationStride(indices.size());
+    const size_t stride = everyPoint ? 1 : subsetStride(indices.size());
     normalEquations(data, indices, problem, JtJ, Jtr, stride);
     if (stride > 1)
         JtJ *= static_cast<double>(indices.size()) /

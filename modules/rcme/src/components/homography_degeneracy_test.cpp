@@ -111,7 +111,7 @@ HomographyComparison compareWithHomography(const TwoViewData& data, const Eigen:
     // is searched on an evenly spaced subset (kMaxIteratedPoints): twenty thousand points decide
     // whether a homography explains them; the comparison below takes every candidate.
     std::vector<Point2d> search1, search2;
-    const size_t stride = (candidates1.size() + kMaxIteratedPoints - 1) / kMaxIteratedPoints;
+    const size_t stride = subsetStride(candidates1.size());
     if (stride > 1)
         for (size_t i = 0; i < candidates1.size(); i += stride) {
             search1.push_back(candidates1[i]);

@@ -218,9 +218,9 @@ TwoViewData evenlySpacedSubset(const TwoViewData& data, size_t maxPoints)
 {
     TwoViewData subset = data;
     const size_t n = data.points1.size();
-    if (n <= maxPoints || maxPoints == 0)
+    const size_t stride = subsetStride(n, maxPoints);
+    if (stride == 1)
         return subset;
-    const size_t stride = (n + maxPoints - 1) / maxPoints;
     subset.points1.clear();
     subset.points2.clear();
     for (size_t i = 0; i < n; i += stride) {

@@ -38,6 +38,13 @@ on, and most hypotheses are contaminated. The same bound as kMaxIteratedPoints, 
 benchmark's pairs keep the exhaustive scoring. */
 constexpr int kSprtMinPoints = static_cast<int>(kMaxIteratedPoints);
 
+//! The k of an evenly spaced subset of `count` points: 1 up to `maxPoints` (or with maxPoints 0),
+//! else the smallest k that leaves at most `maxPoints`.
+inline size_t subsetStride(size_t count, size_t maxPoints = kMaxIteratedPoints)
+{
+    return maxPoints == 0 || count <= maxPoints ? 1 : (count + maxPoints - 1) / maxPoints;
+}
+
 //! Every k-th correspondence of `data` (k the smallest that leaves at most `maxPoints`), with its
 //! camera and noise: the subset on which a decision about a large problem is made.
 TwoViewData evenlySpacedSubset(const TwoViewData& data, size_t maxPoints);
