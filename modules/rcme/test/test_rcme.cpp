@@ -303,29 +303,43 @@ TEST(Rcme_Boxes, propagated_covariance_matches_monte_carlo)
     EXPECT_NEAR(ratio, 1.0, 0.25);
 }
 
-TEST(Rcme_Boxes, band_sprt_keeps_the_true_model_and_rejects_bad_ones_early)
+// A clearly wrong motion: the true one rotated by about 15 degrees.
+Model wrongMotion(const Model& truth, const TwoViewData& data)
 {
-    const SyntheticScene s = scene(SCENE_GENERIC, 12, 0.5);
-    const TwoViewData data = sceneData(s, true, false);
-    Model truth = trueMotion(s, data);
     Model bad = truth;
     bad.R = bad.R * rotationExp(Eigen::Vector3d(0.2, -0.15, 0.1));
     bad.E = skew(bad.t) * bad.R;
     bad.F = fundamentalFromEssential(bad.E, data.Kinv);
+    return bad;
+}
 
-    const Params params = rcmeParams(0, METHOD_STANDARD);
+// An SPRT verifier from createSprt(seed) keeps `truth` in 1000 point orders and rejects
+// `bad` early; returns the mean number of points it checked per bad hypothesis.
+template <class CreateSprt>
+double expectSprtKeepsTruthAndRejectsBad(const TwoViewData& data, Model truth, Model bad,
+                                         const CreateSprt& createSprt)
+{
     int trueRejected = 0;
-    for (int trial = 0; trial < 1000; ++trial) {
-        auto sprt = createBandSprtVerifier(data, params, static_cast<uint64_t>(trial));
-        trueRejected += !sprt->isModelGood(data, {}, truth);
-    }
+    for (int trial = 0; trial < 1000; ++trial)
+        trueRejected += !createSprt(static_cast<uint64_t>(trial))->isModelGood(data, {}, truth);
     EXPECT_EQ(trueRejected, 0);
 
-    auto sprt = createBandSprtVerifier(data, params, 1);
+    auto sprt = createSprt(1);
     constexpr int kBadTrials = 100;
     for (int trial = 0; trial < kBadTrials; ++trial)
         EXPECT_FALSE(sprt->isModelGood(data, {}, bad));
-    const double meanChecked = static_cast<double>(sprt->pointsChecked()) / kBadTrials;
+    return static_cast<double>(sprt->pointsChecked()) / kBadTrials;
+}
+
+TEST(Rcme_Boxes, band_sprt_keeps_the_true_model_and_rejects_bad_ones_early)
+{
+    const SyntheticScene s = scene(SCENE_GENERIC, 12, 0.5);
+    const TwoViewData data = sceneData(s, true, false);
+    const Model truth = trueMotion(s, data);
+    const Params params = rcmeParams(0, METHOD_STANDARD);
+    const double meanChecked = expectSprtKeepsTruthAndRejectsBad(
+        data, truth, wrongMotion(truth, data),
+        [&](uint64_t seed) { return createBandSprtVerifier(data, params, seed); });
     std::cout << "band SPRT: " << meanChecked << " of " << data.size()
               << " points checked per bad hypothesis" << std::endl;
     EXPECT_LT(meanChecked, 0.25 * data.size());
@@ -484,24 +498,10 @@ TEST(Rcme_Boxes, sprt_keeps_the_true_model_and_rejects_bad_ones_early)
     // The true motion with the covariance a minimal sample would give it.
     Model truth = trueMotion(s, data);
     ASSERT_TRUE(fitModelOn(inliers, {0, 17, 35, 52, 70, 88, 105, 123}, 0, truth));
-    Model bad = truth;
-    bad.R = bad.R * rotationExp(Eigen::Vector3d(0.2, -0.15, 0.1)); // a clearly wrong motion
-    bad.E = skew(bad.t) * bad.R;
-    bad.F = fundamentalFromEssential(bad.E, data.Kinv);
-
     const Params params = rcmeParams(0, METHOD_COV_RANSAC);
-    int trueRejected = 0;
-    for (int trial = 0; trial < 1000; ++trial) {
-        auto sprt = createSprtVerifier(data, params, static_cast<uint64_t>(trial));
-        trueRejected += !sprt->isModelGood(data, {}, truth);
-    }
-    EXPECT_EQ(trueRejected, 0);
-
-    auto sprt = createSprtVerifier(data, params, 1);
-    constexpr int kBadTrials = 100;
-    for (int trial = 0; trial < kBadTrials; ++trial)
-        EXPECT_FALSE(sprt->isModelGood(data, {}, bad));
-    const double meanChecked = static_cast<double>(sprt->pointsChecked()) / kBadTrials;
+    const double meanChecked = expectSprtKeepsTruthAndRejectsBad(
+        data, truth, wrongMotion(truth, data),
+        [&](uint64_t seed) { return createSprtVerifier(data, params, seed); });
     std::cout << "SPRT: " << meanChecked << " of " << data.size()
               << " points checked per bad hypothesis" << std::endl;
     // Measured over verifier seeds 1-4: 31 to 88 of 500 (delta adapts to the wide bands a
