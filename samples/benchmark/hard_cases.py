@@ -32,10 +32,10 @@ def _all_outliers(seed, points=300):
                 np.eye(3), np.zeros(3), labels=np.zeros(points, bool), sigma=1.0)
 
 
-def hard_case_pairs(seeds):
-    """Every case of the suite for seeds 0..seeds-1."""
+def hard_case_pairs(seeds, first=0):
+    """Every case of the suite for seeds first..first+seeds-1 (the benchmark's start at 0)."""
     pairs = []
-    for seed in range(seeds):
+    for seed in range(first, first + seeds):
         pairs += [
             _generated("corridor w=0.3", seed, 1.0, inlierRatio=0.3),
             _generated("narrow corridor", seed, 1.0, corridorWidth=1.5, corridorHeight=1.5),

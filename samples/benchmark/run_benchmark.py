@@ -265,10 +265,17 @@ def confusion_section(run, names, real_datasets, N_max):
                                                        real + corridor_rows + hard_rows)],
                                       names)]
     defaults = run.get("defaults") or []
+    corridor_adaptive = run.get("corridor_adaptive") or []
+    hard_adaptive = run.get("hard_adaptive") or []
     if defaults:
+        synthetic = [("corridor (synthetic)", corridor_adaptive),
+                     ("hard cases (synthetic)", hard_adaptive)]
         lines += ["### Summary, adaptive termination (at most N = %d, confidence %.2f)\n" % (
             DEFAULT_SETTINGS_N, methods.DEFAULT_CONFIDENCE),
-            report.confusion_summary(suites(defaults), DEFAULT_SETTINGS_METHODS)]
+            report.confusion_summary(
+                suites(defaults) + [s for s in synthetic if s[1]]
+                + [("all suites", defaults + corridor_adaptive + hard_adaptive)],
+                DEFAULT_SETTINGS_METHODS)]
     lines += ["### Per dataset, exactly N = %d\n" % N_max,
               report.confusion_table(real, names, real_datasets)]
     if corridor_rows:
@@ -285,6 +292,11 @@ def confusion_section(run, names, real_datasets, N_max):
     if defaults:
         lines += ["### Per dataset, adaptive termination\n",
                   report.confusion_table(defaults, DEFAULT_SETTINGS_METHODS, real_datasets)]
+    for title, rows in [("Corridor", corridor_adaptive), ("Hard cases", hard_adaptive)]:
+        if rows:
+            lines += ["### %s, adaptive termination\n" % title,
+                      report.confusion_table(rows, DEFAULT_SETTINGS_METHODS,
+                                             sorted({r["dataset"] for r in rows}))]
     return lines
 
 
@@ -295,14 +307,16 @@ DEFAULT_SETTINGS_METHODS = [m for m in [methods.DEFAULT_METHOD, "RCME", "Standar
                             if m in methods.METHODS]
 
 
-def run_defaults(task_pairs, sigma):
-    """The timed methods once per real pair as a user calls them: adaptive termination."""
+def run_defaults(task_pairs, sigma, label="defaults"):
+    """The timed methods once per pair as a user calls them: adaptive termination. Synthetic
+    pairs keep the sigma they were generated with."""
     rows = []
-    progress = Progress(len(task_pairs) * len(DEFAULT_SETTINGS_METHODS), "defaults")
+    progress = Progress(len(task_pairs) * len(DEFAULT_SETTINGS_METHODS), label)
     for pair in task_pairs:
+        pair_sigma = pair.sigma if pair.sigma is not None else sigma
         for method in DEFAULT_SETTINGS_METHODS:
-            row = evaluate.evaluate(method, pair, methods.Budget(DEFAULT_SETTINGS_N, sigma, 0,
-                                                                 adaptive=True))
+            row = evaluate.evaluate(method, pair, methods.Budget(DEFAULT_SETTINGS_N, pair_sigma,
+                                                                 0, adaptive=True))
             if row is not None:
                 rows.append(row)
             progress.step()
@@ -378,8 +392,9 @@ def main(argv=None):
         with open(record_path) as f:
             run = json.load(f)
         if args.hard_only:
-            run["hard"] = run_all(hard_cases.hard_case_pairs(args.hard_seeds),
-                                  [max(args.iterations)], 1, args.sigma, "hard cases")
+            hard = hard_cases.hard_case_pairs(args.hard_seeds)
+            run["hard"] = run_all(hard, [max(args.iterations)], 1, args.sigma, "hard cases")
+            run["hard_adaptive"] = run_defaults(hard, args.sigma, "hard, adaptive")
             with open(record_path, "w") as f:
                 json.dump(run, f)
     else:
@@ -391,14 +406,17 @@ def main(argv=None):
                 os.remove(os.path.join(args.out, name))
         matcher = matching.Matcher(args.cache)
         task_pairs, notes = real_pairs(args, matcher)
-        rows_synthetic = run_all(corridor_pairs(args), [max(args.iterations)], 1, args.sigma,
+        corridor_scenes = corridor_pairs(args)
+        rows_synthetic = run_all(corridor_scenes, [max(args.iterations)], 1, args.sigma,
                                  "corridor")
         rows_real = run_all(task_pairs, args.iterations, args.seeds, args.sigma, "real")
-        rows_hard = run_all(hard_cases.hard_case_pairs(args.hard_seeds), [max(args.iterations)],
-                            1, args.sigma, "hard cases")
+        hard_scenes = hard_cases.hard_case_pairs(args.hard_seeds)
+        rows_hard = run_all(hard_scenes, [max(args.iterations)], 1, args.sigma, "hard cases")
         rows_defaults = run_defaults(task_pairs, args.sigma)
         run = {"synthetic": rows_synthetic, "real": rows_real, "defaults": rows_defaults,
                "hard": rows_hard,
+               "corridor_adaptive": run_defaults(corridor_scenes, args.sigma, "corridor, adaptive"),
+               "hard_adaptive": run_defaults(hard_scenes, args.sigma, "hard, adaptive"),
                "notes": notes,
                "elapsed": time.time() - start, "command": command.strip(),
                "date": datetime.datetime.utcnow().strftime("%Y-%m-%d %H:%M UTC"),

@@ -9,12 +9,13 @@ namespace rcme {
 Params::Params()
     : method(METHOD_STANDARD), sampler(SAMPLER_UNIFORM), solver(SOLVER_AUTO),
       verification(VERIFICATION_AUTO), sigma(1.0), threshold(0.0), confidence(0.99),
-      maxIterations(1000), exactIterations(false), randomGeneratorState(0), refine(true),
-      refineIterations(20), useEstimatedNoise(true), alpha(0.05), entropyThreshold(1.27),
-      inlierRatioFactor(0.9), priorInlierRatio(0.0), consistencyDof(1), sampleFitIterations(5),
-      sampleLeverage(false), earlyTerminationEntropy(0.0), localOptimization(true),
-      degeneracyTest(true), ambiguityMargin(2.0), maxRotationStdDeg(2.0), maxTranslationStdDeg(6.0),
-      isParallel(false), timeBudget(0.0)
+      cleanSampleSuccessRate(0.3), maxIterations(1000), exactIterations(false),
+      randomGeneratorState(0), refine(true), refineIterations(20), useEstimatedNoise(true),
+      alpha(0.05), entropyThreshold(1.27), inlierRatioFactor(0.9), priorInlierRatio(0.0),
+      consistencyDof(1), sampleFitIterations(5), sampleLeverage(false),
+      earlyTerminationEntropy(0.0), localOptimization(true), degeneracyTest(true),
+      ambiguityMargin(2.0), maxRotationStdDeg(2.0), maxTranslationStdDeg(6.0), isParallel(false),
+      timeBudget(0.0)
 {
 }
 
@@ -50,6 +51,7 @@ Params Params::asPublished(Method method)
     p.method = method;
     p.solver = SOLVER_EIGHT_POINT;
     p.localOptimization = false;
+    p.cleanSampleSuccessRate = 1.0;
     p.ambiguityMargin = 0.0;
     p.maxRotationStdDeg = 0.0;
     p.maxTranslationStdDeg = 0.0;

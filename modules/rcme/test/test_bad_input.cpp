@@ -158,6 +158,8 @@ TEST(Rcme_BadInput, bad_params_throw_naming_the_field)
         {"Params.sigma", [](Params& p) { p.sigma = NAN; }},
         {"Params.threshold", [](Params& p) { p.threshold = INFINITY; }},
         {"Params.confidence", [](Params& p) { p.confidence = 1.0; }},
+        {"Params.cleanSampleSuccessRate", [](Params& p) { p.cleanSampleSuccessRate = 0.0; }},
+        {"Params.cleanSampleSuccessRate", [](Params& p) { p.cleanSampleSuccessRate = 1.5; }},
         {"Params.maxIterations", [](Params& p) { p.maxIterations = 0; }},
         {"Params.maxIterations", [](Params& p) { p.maxIterations = 2000000000; }},
         {"Params.refineIterations", [](Params& p) { p.refineIterations = -1; }},

@@ -128,6 +128,15 @@ TEST(Rcme_Termination, adaptive_bound_and_exact_count)
     adaptive->update(score, 100);
     EXPECT_EQ(adaptive->iterationBound(), 0);
 
+    // Only a fraction q of the clean samples assumed good: log(0.01) / log(1 - 0.25 * 2^-8).
+    auto cautious = createAdaptiveTermination(0.99, 5000, 8, 0.25);
+    score.inlierCount = 50;
+    cautious->update(score, 100);
+    EXPECT_EQ(cautious->iterationBound(), 4714);
+    score.inlierCount = 100; // every sample clean, a quarter of them good: log(0.01) / log(0.75)
+    cautious->update(score, 100);
+    EXPECT_EQ(cautious->iterationBound(), 17);
+
     auto exact = createExactTermination(250);
     exact->update(score, 100);
     EXPECT_EQ(exact->iterationBound(), 250);

@@ -1,9 +1,12 @@
 // This file is part of the rcme module. It is subject to the license terms in the LICENSE file
 // found in the top-level directory of this distribution.
 
-// Box "termination" of Fig. 1: the usual adaptive bound N = log(1 - p) / log(1 - w^m) from the
-// best inlier ratio w so far, or exactly N iterations as in the paper's experiments; and RCME's
-// early termination (Sec. IV-D.2): stop once a candidate's mean entropy is below a preset bound.
+// Box "termination" of Fig. 1: the adaptive bound N = log(1 - p) / log(1 - q w^m) from the best
+// inlier ratio w so far, where q is the fraction of all-inlier samples that give the right model
+// (q = 1 is the usual bound; a noisy minimal sample can fit a wrong motion, as LO-RANSAC's
+// authors observed, so q < 1 draws more); or exactly N iterations as in the paper's experiments;
+// and RCME's early termination (Sec. IV-D.2): stop once a candidate's mean entropy is below a
+// preset bound.
 
 #include "framework/components.hpp"
 
@@ -16,9 +19,10 @@ namespace {
 class AdaptiveTermination final : public Termination
 {
 public:
-    AdaptiveTermination(double confidence, int maxIterations, int sampleSize)
+    AdaptiveTermination(double confidence, int maxIterations, int sampleSize,
+                        double cleanSampleSuccessRate)
         : confidence_(confidence), maxIterations_(maxIterations), sampleSize_(sampleSize),
-          bound_(maxIterations)
+          cleanSampleSuccessRate_(cleanSampleSuccessRate), bound_(maxIterations)
     {
     }
 
@@ -28,13 +32,15 @@ public:
     {
         const double inlierRatio = static_cast<double>(best.inlierCount) / pointCount;
         const double cleanSample = std::pow(inlierRatio, sampleSize_);
-        if (cleanSample >= 1.0) {
+        // Every point an inlier: every sample is clean, and with q = 1 one sample suffices.
+        if (cleanSample >= 1.0 && cleanSampleSuccessRate_ >= 1.0) {
             bound_ = 0;
             return;
         }
-        if (cleanSample <= 0.0)
+        const double goodSample = cleanSampleSuccessRate_ * cleanSample;
+        if (goodSample <= 0.0)
             return;
-        const double needed = std::log(1.0 - confidence_) / std::log1p(-cleanSample);
+        const double needed = std::log(1.0 - confidence_) / std::log1p(-goodSample);
         if (needed < maxIterations_)
             bound_ = std::min(bound_, static_cast<int>(std::ceil(needed)));
     }
@@ -43,6 +49,7 @@ private:
     double confidence_;
     int maxIterations_;
     int sampleSize_;
+    double cleanSampleSuccessRate_;
     int bound_;
 };
 
@@ -88,9 +95,11 @@ std::unique_ptr<Termination> createEntropyTermination(std::unique_ptr<Terminatio
 }
 
 std::unique_ptr<Termination> createAdaptiveTermination(double confidence, int maxIterations,
-                                                       int sampleSize)
+                                                       int sampleSize,
+                                                       double cleanSampleSuccessRate)
 {
-    return std::make_unique<AdaptiveTermination>(confidence, maxIterations, sampleSize);
+    return std::make_unique<AdaptiveTermination>(confidence, maxIterations, sampleSize,
+                                                 cleanSampleSuccessRate);
 }
 
 std::unique_ptr<Termination> createExactTermination(int iterations)

@@ -214,8 +214,10 @@ std::unique_ptr<Sampler> createProsacSampler(std::vector<int> order, int sampleS
 std::unique_ptr<MinimalSolver> createEightPointSolver(bool essentialHypotheses);
 std::unique_ptr<Scorer> createInlierCountScorer(const TwoViewData& data, int sampleSize,
                                                 int maxIterations);
+// cleanSampleSuccessRate: Params::cleanSampleSuccessRate (1: the classic bound).
 std::unique_ptr<Termination> createAdaptiveTermination(double confidence, int maxIterations,
-                                                       int sampleSize);
+                                                       int sampleSize,
+                                                       double cleanSampleSuccessRate = 1.0);
 std::unique_ptr<Termination> createExactTermination(int iterations);
 std::unique_ptr<Refiner> createGoldStandardRefiner(int maxIterations);
 

@@ -87,7 +87,8 @@ EstimatorComponents createEstimator(const Params& params, const TwoViewData& dat
     }
     c.termination = params.exactIterations
                         ? createExactTermination(params.maxIterations)
-                        : createAdaptiveTermination(params.confidence, params.maxIterations, m);
+                        : createAdaptiveTermination(params.confidence, params.maxIterations, m,
+                                                    params.cleanSampleSuccessRate);
     switch (params.method) {
     case METHOD_STANDARD:
         c.scorer = createInlierCountScorer(data, m, params.maxIterations);

@@ -142,6 +142,8 @@ void validateParams(const Params& p)
     checkRange(std::isfinite(p.sigma) && p.sigma > 0, "Params.sigma must be positive and finite");
     checkRange(std::isfinite(p.threshold), "Params.threshold must be finite (<= 0: from sigma)");
     checkRange(p.confidence > 0 && p.confidence < 1, "Params.confidence must be in (0, 1)");
+    checkRange(p.cleanSampleSuccessRate > 0 && p.cleanSampleSuccessRate <= 1,
+               "Params.cleanSampleSuccessRate must be in (0, 1]");
     checkRange(p.maxIterations >= 1 && p.maxIterations <= kMaxIterationsLimit,
                "Params.maxIterations must be in [1, 10000000]");
     checkRange(p.refineIterations >= 0 && p.refineIterations <= 1000,

@@ -717,6 +717,8 @@ PYBIND11_MODULE(_rcme, m)
         .plain("sigma", &Params::sigma, "noise standard deviation, pixels; default 1")
         .plain("threshold", &Params::threshold, "Sampson threshold, pixels; <= 0: 1.96 sigma")
         .plain("confidence", &Params::confidence, "default 0.99")
+        .plain("cleanSampleSuccessRate", &Params::cleanSampleSuccessRate,
+               "q of the adaptive bound log(1 - p) / log(1 - q w^m), in (0, 1]; default 0.3")
         .plain("maxIterations", &Params::maxIterations, "default 1000")
         .plain("exactIterations", &Params::exactIterations, "default False")
         .plain("randomGeneratorState", &Params::randomGeneratorState, "seed; default 0")

@@ -179,6 +179,7 @@ class _RcmeSuite:
         self.assertEqual(p.sigma, 1.0)
         self.assertLessEqual(p.threshold, 0.0)
         self.assertAlmostEqual(p.confidence, 0.99)
+        self.assertAlmostEqual(p.cleanSampleSuccessRate, 0.3)
         self.assertEqual(p.maxIterations, 1000)
         self.assertIs(p.exactIterations, False)
         self.assertEqual(p.randomGeneratorState, 0)
@@ -203,6 +204,7 @@ class _RcmeSuite:
         self.assertEqual(p.method, b.METHOD_RCME)
         self.assertEqual(p.solver, b.SOLVER_EIGHT_POINT)
         self.assertIs(p.localOptimization, False)
+        self.assertEqual(p.cleanSampleSuccessRate, 1.0)
         self.assertEqual((p.ambiguityMargin, p.maxRotationStdDeg, p.maxTranslationStdDeg),
                          (0.0, 0.0, 0.0))
         self.assertEqual(p.maxIterations, b.Params().maxIterations)  # the rest: the defaults
@@ -212,7 +214,7 @@ class _RcmeSuite:
         values = {
             "method": b.METHOD_MLESAC, "sampler": b.SAMPLER_PROSAC,
             "solver": b.SOLVER_FIVE_POINT, "verification": b.VERIFICATION_SPRT, "sigma": 0.5, "threshold": 2.5, "confidence": 0.95,
-            "maxIterations": 321, "exactIterations": True, "randomGeneratorState": 42,
+            "cleanSampleSuccessRate": 0.5, "maxIterations": 321, "exactIterations": True, "randomGeneratorState": 42,
             "refine": False, "refineIterations": 7, "alpha": 0.01, "entropyThreshold": 2.0,
             "inlierRatioFactor": 0.6, "priorInlierRatio": 0.3, "consistencyDof": 3,
             "degeneracyTest": False, "isParallel": True, "useEstimatedNoise": False,
