@@ -15,7 +15,8 @@ def evaluate(method, pair, budget):
         return None
     row = {"dataset": pair.dataset, "pair": pair.name, "N": budget.iterations,
            "seed": budget.seed, "method": method, "ok": estimate.ok, "status": estimate.status,
-           "seconds": estimate.seconds, "points": len(p1), "flagged": estimate.flagged}
+           "seconds": estimate.seconds, "points": len(p1), "flagged": estimate.flagged,
+           "unjudgeable": pair.unjudgeable}
     if not estimate.ok:
         # A flag is judged through the rejected model: wrong means caught, right a false alarm.
         judged = _against_truth(estimate.rejected_F, estimate.rejected_R, estimate.rejected_t,

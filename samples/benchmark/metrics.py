@@ -120,6 +120,36 @@ def f_error(F, gt_points):
     return float(np.sqrt(np.mean(d * d)))
 
 
+# The judge's blindness test (epipole_blind): a homography through the true matches, and
+# epipoles far apart: four at infinity 45 deg apart, four at this distance (px) around them.
+BLIND_HOMOGRAPHY_PX = 3.0
+BLIND_EPIPOLE_DISTANCE_PX = 2000.0
+
+
+def epipole_blind(gt_points):
+    """True when the F-only judge (f_error <= F_FAILURE_PX) cannot tell one epipole from another
+    on these true matches: they fit one homography H so closely that F = [e]x H passes the judge
+    for epipoles e in all of eight spread directions. A scene's F is then not determined by its
+    labelled matches (one plane, or planes too close to tell), and no estimate can be called right
+    or wrong there."""
+    gt_points = np.asarray(gt_points, np.float64)
+    if len(gt_points) < 4:
+        return False
+    H, _ = cv2.findHomography(gt_points[:, :2], gt_points[:, 2:], cv2.RANSAC,
+                              BLIND_HOMOGRAPHY_PX, maxIters=5000, confidence=0.9999)
+    if H is None:
+        return False
+    cx, cy = np.mean(gt_points[:, 2], axis=0), np.mean(gt_points[:, 3], axis=0)
+    d = BLIND_EPIPOLE_DISTANCE_PX
+    epipoles = [(1, 0, 0), (1, 1, 0), (0, 1, 0), (-1, 1, 0),
+                (cx + d, cy, 1), (cx, cy + d, 1), (cx - d, cy, 1), (cx, cy - d, 1)]
+    for e in epipoles:
+        F = _skew(np.asarray(e, np.float64)) @ H
+        if f_error(F / np.linalg.norm(F), gt_points) > F_FAILURE_PX:
+            return False
+    return True
+
+
 def precision_recall(mask, truth):
     found = int(np.sum(mask & truth))
     precision = found / max(int(mask.sum()), 1)

@@ -7,6 +7,7 @@ import numpy as np
 import cv2
 
 from datasets import sampson_distance
+from metrics import epipole_blind
 
 ORB_SLAM_CHI2_F, ORB_SLAM_CHI2_H = 3.841, 5.991  # ORB-SLAM's per-image chi2 cut-offs (sigma 1)
 MAX_HOMOGRAPHY_RATIO = 0.40  # ORB-SLAM picks H above this R_H = S_H / (S_H + S_F): reject then
@@ -28,6 +29,9 @@ class Pair:
     gt_points: object = None   # true correspondences [x1 y1 x2 y2] to score F-only pairs
     note: str = ""
     sigma: object = None       # noise of the pair when known (corridor), else the run's sigma
+    # F-only pairs whose true matches cannot tell F's epipole (metrics.epipole_blind): their
+    # runs are neither right nor wrong in the confusion table
+    unjudgeable: bool = False
 
 
 def _line_distances_squared(F, p1, p2):
@@ -120,10 +124,11 @@ def labelled_pairs(raw_pairs, matcher):
             p1, p2, _ = matcher.match(*raw.images)
             if len(p1) < 8:
                 continue
-            pairs.append(Pair("MAGSAC vpts", raw.name, p1, p2, gt_points=raw.gt_points))
+            pairs.append(Pair("MAGSAC vpts", raw.name, p1, p2, gt_points=raw.gt_points,
+                              unjudgeable=epipole_blind(raw.gt_points)))
         else:
             truth = raw.labels > 0
             gt = np.hstack([raw.points1[truth], raw.points2[truth]])
             pairs.append(Pair("AdelaideRMF", raw.name, raw.points1, raw.points2, labels=truth,
-                              gt_points=gt))
+                              gt_points=gt, unjudgeable=epipole_blind(gt)))
     return pairs

@@ -73,6 +73,31 @@ def _sampson(F, p1, p2):
     return np.abs(num) / np.sqrt(den)
 
 
+_HEADER_DIR = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "..",
+                           "include", "opencv2", "rcme")
+
+
+def _public_header_names():
+    """What the public headers declare for Python, read from their text: {struct: [fields]} of
+    the CV_EXPORTS_W_SIMPLE structs' CV_PROP_RW fields, {NAME: value} of the enum constants,
+    and the CV_EXPORTS_W function names. The bindings are checked against this, so a field or
+    constant added to a header and not to the pybind11 module fails a test."""
+    import re
+    structs, constants, functions = {}, {}, set()
+    for name in sorted(os.listdir(_HEADER_DIR)):
+        with open(os.path.join(_HEADER_DIR, name)) as f:
+            text = re.sub(r"/\*.*?\*/", "", f.read(), flags=re.S)
+        text = re.sub(r"//[^\n]*", "", text)
+        for struct, body in re.findall(r"struct CV_EXPORTS_W_SIMPLE (\w+)\s*\{(.*?)\n\};", text,
+                                       re.S):
+            structs[struct] = re.findall(r"CV_PROP_RW\s+[\w:<>]+\s+(\w+)\s*;", body)
+        for body in re.findall(r"\benum\s+\w+[^{;]*\{(.*?)\}", text, re.S):  # ": int" too
+            for constant, value in re.findall(r"\b([A-Z][A-Z0-9_]+)\s*=\s*(-?\d+)", body):
+                constants[constant] = int(value)
+        functions.update(re.findall(r"CV_EXPORTS_W\s+[\w:]+\s+(\w+)\s*\(", text))
+    return structs, constants, functions
+
+
 def _mask_quality(mask, truth):
     """Recall of the true inliers and precision of the estimated ones."""
     m = mask.ravel().astype(bool)
@@ -209,25 +234,54 @@ class _RcmeSuite:
                          (0.0, 0.0, 0.0))
         self.assertEqual(p.maxIterations, b.Params().maxIterations)  # the rest: the defaults
 
-    def test_params_attribute_round_trip(self):
+    def test_binding_has_every_name_of_the_headers(self):
         b = self.b
-        values = {
-            "method": b.METHOD_MLESAC, "sampler": b.SAMPLER_PROSAC,
-            "solver": b.SOLVER_FIVE_POINT, "verification": b.VERIFICATION_SPRT, "sigma": 0.5, "threshold": 2.5, "confidence": 0.95,
-            "cleanSampleSuccessRate": 0.5, "maxIterations": 321, "exactIterations": True, "randomGeneratorState": 42,
-            "refine": False, "refineIterations": 7, "alpha": 0.01, "entropyThreshold": 2.0,
-            "inlierRatioFactor": 0.6, "priorInlierRatio": 0.3, "consistencyDof": 3,
-            "degeneracyTest": False, "isParallel": True, "useEstimatedNoise": False,
-        }
-        p = b.Params()
-        for name, value in values.items():
-            setattr(p, name, value)
-        for name, value in values.items():
-            got = getattr(p, name)
-            self.assertEqual(got, value, name)
-            self.assertIs(type(got), type(value), name)
-        q = b.Params()  # a new object keeps the defaults
-        self.assertEqual(q.maxIterations, 1000)
+        structs, constants, functions = _public_header_names()
+        self.assertIn("cleanSampleSuccessRate", structs["Params"])  # the reader reads the header
+        self.assertGreater(len(constants), 20)
+        for struct, fields in structs.items():
+            instance = getattr(b, struct)()
+            for field in fields:
+                self.assertTrue(hasattr(instance, field), "%s.%s" % (struct, field))
+        for constant, value in constants.items():
+            self.assertEqual(getattr(b, constant, None), value, constant)
+        for function in functions:
+            self.assertTrue(callable(getattr(b, function, None)), function)
+
+    def test_every_params_field_round_trips(self):
+        """Every field of the header's Params, set on one object to a value other than its
+        default, reads back as set with the type it was set with (enums: another valid
+        constant), so no two fields share storage; a new object keeps the defaults."""
+        b = self.b
+        structs, constants, _ = _public_header_names()
+        enum_prefixes = {"method": "METHOD_", "sampler": "SAMPLER_", "solver": "SOLVER_",
+                         "verification": "VERIFICATION_"}
+        defaults, p, values = b.Params(), b.Params(), {}
+        for field in structs["Params"]:
+            default = getattr(defaults, field)
+            if field in enum_prefixes:
+                values[field] = next(v for k, v in sorted(constants.items())
+                                     if k.startswith(enum_prefixes[field]) and v != default)
+            elif isinstance(default, bool):
+                values[field] = not default
+            elif isinstance(default, int):
+                values[field] = default + 3
+            elif isinstance(default, float):
+                values[field] = default + 0.25
+            else:  # a Mat (matchQuality)
+                values[field] = np.arange(4, dtype=np.float64).reshape(4, 1)
+            setattr(p, field, values[field])
+        for field, value in values.items():
+            got = getattr(p, field)
+            if isinstance(value, np.ndarray):
+                np.testing.assert_array_equal(np.asarray(got).reshape(4, 1), value, field)
+            else:
+                self.assertEqual(got, value, field)
+                self.assertIs(type(got), type(value), field)
+        fresh = b.Params()
+        for field in values:
+            if not isinstance(values[field], np.ndarray):
+                self.assertEqual(getattr(fresh, field), getattr(defaults, field), field)
 
     def test_params_from_usac_params(self):
         UsacParams = _usac_params_type()
