@@ -70,20 +70,14 @@ inline const char* methodNames()
     return "rcme, prcme, standard, mlesac, covransac";
 }
 
+// The library's names (cv::rcme::methodFromString); a usage error for any other.
 inline cv::rcme::Method parseMethod(const std::string& name)
 {
-    static const std::vector<std::pair<std::string, cv::rcme::Method>> methods = {
-        {"rcme", cv::rcme::METHOD_RCME},
-        {"prcme", cv::rcme::METHOD_PRCME},
-        {"standard", cv::rcme::METHOD_STANDARD},
-        {"mlesac", cv::rcme::METHOD_MLESAC},
-        {"covransac", cv::rcme::METHOD_COV_RANSAC},
-        {"cov-ransac", cv::rcme::METHOD_COV_RANSAC},
-        {"cov_ransac", cv::rcme::METHOD_COV_RANSAC}};
-    for (const auto& m : methods)
-        if (m.first == name)
-            return m.second;
-    throw UsageError("unknown --method '" + name + "' (" + methodNames() + ")");
+    try {
+        return cv::rcme::methodFromString(name);
+    } catch (const cv::Exception&) {
+        throw UsageError("unknown --method '" + name + "' (" + methodNames() + ")");
+    }
 }
 
 inline cv::rcme::MinimalSolverKind parseSolver(const std::string& name)

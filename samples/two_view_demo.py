@@ -111,14 +111,11 @@ METHOD_NAMES = "rcme, prcme, standard, mlesac, covransac"
 
 
 def parse_method(rcme, name):
-    methods = {
-        "rcme": rcme.METHOD_RCME, "prcme": rcme.METHOD_PRCME, "standard": rcme.METHOD_STANDARD,
-        "mlesac": rcme.METHOD_MLESAC, "covransac": rcme.METHOD_COV_RANSAC,
-        "cov-ransac": rcme.METHOD_COV_RANSAC, "cov_ransac": rcme.METHOD_COV_RANSAC,
-    }
-    if name not in methods:
+    """The library's names (methodFromString); a usage error for any other."""
+    try:
+        return rcme.methodFromString(name)
+    except Exception:  # rcme.error or cv2.error, which name the accepted values too
         raise UsageError("unknown --method '%s' (%s)" % (name, METHOD_NAMES))
-    return methods[name]
 
 
 def parse_solver(rcme, name):

@@ -87,5 +87,55 @@ String statusToString(Status status)
     return cv::format("unknown status %d", static_cast<int>(status));
 }
 
+namespace {
+
+constexpr Method kMethods[] = {METHOD_RCME, METHOD_PRCME, METHOD_STANDARD, METHOD_MLESAC,
+                               METHOD_COV_RANSAC};
+
+const char* nameOf(Method method)
+{
+    switch (method) {
+    case METHOD_RCME:
+        return "rcme";
+    case METHOD_PRCME:
+        return "prcme";
+    case METHOD_STANDARD:
+        return "standard";
+    case METHOD_MLESAC:
+        return "mlesac";
+    case METHOD_COV_RANSAC:
+        return "covransac";
+    }
+    return nullptr;
+}
+
+} // namespace
+
+String methodName(Method method)
+{
+    const char* name = nameOf(method);
+    if (!name)
+        CV_Error(Error::StsBadArg,
+                 cv::format("method: unknown value %d", static_cast<int>(method)));
+    return name;
+}
+
+Method methodFromString(const String& name)
+{
+    std::string key = name;
+    std::transform(key.begin(), key.end(), key.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    key.erase(std::remove_if(key.begin(), key.end(), [](char c) { return c == '-' || c == '_'; }),
+              key.end());
+    std::string accepted;
+    for (Method method : kMethods) {
+        if (key == nameOf(method))
+            return method;
+        accepted += (accepted.empty() ? "" : ", ") + std::string(nameOf(method));
+    }
+    CV_Error(Error::StsBadArg,
+             cv::format("name: unknown method '%s' (%s)", name.c_str(), accepted.c_str()));
+}
+
 } // namespace rcme
 } // namespace cv

@@ -6,6 +6,8 @@
 
 #include "test_precomp.hpp"
 
+#include <algorithm>
+#include <cctype>
 #include <functional>
 
 namespace opencv_test {
@@ -377,6 +379,25 @@ TEST(Rcme_BadInput, status_names)
     EXPECT_EQ(statusToString(STATUS_NOT_ENOUGH_POINTS), "not enough points");
     EXPECT_EQ(statusToString(STATUS_DEGENERATE_CONFIGURATION), "degenerate configuration");
     EXPECT_NE(statusToString(static_cast<Status>(42)).find("42"), std::string::npos);
+}
+
+TEST(Rcme_BadInput, method_names)
+{
+    for (Method method :
+         {METHOD_RCME, METHOD_PRCME, METHOD_STANDARD, METHOD_MLESAC, METHOD_COV_RANSAC}) {
+        const String name = methodName(method);
+        EXPECT_EQ(methodFromString(name), method) << name;
+        String upper = name;
+        std::transform(upper.begin(), upper.end(), upper.begin(),
+                       [](unsigned char c) { return static_cast<char>(std::toupper(c)); });
+        EXPECT_EQ(methodFromString(upper), method) << upper;
+    }
+    EXPECT_EQ(methodName(METHOD_STANDARD), "standard");
+    EXPECT_EQ(methodFromString("cov-ransac"), METHOD_COV_RANSAC);
+    EXPECT_EQ(methodFromString("cov_ransac"), METHOD_COV_RANSAC);
+    expectErrorNaming([] { methodFromString("ransac"); }, "name");
+    expectErrorNaming([] { methodFromString(""); }, "name");
+    expectErrorNaming([] { methodName(static_cast<Method>(7)); }, "method");
 }
 
 } // namespace

@@ -11,10 +11,12 @@
 
 #include <opencv2/rcme.hpp>
 
+#include <algorithm>
 #include <climits>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <string>
 
 namespace {
 
@@ -543,5 +545,13 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
     callSceneAndMotion(c, out);
     callParamsFromUsac(c);
     FUZZ_REQUIRE(!statusToString(static_cast<Status>(c.statusValue)).empty());
+    // The names' parser on the input's raw bytes: a Method or a named error, never a crash.
+    try {
+        const Method method = methodFromString(
+            std::string(reinterpret_cast<const char*>(data), std::min<size_t>(size, 16)));
+        FUZZ_REQUIRE(methodFromString(methodName(method)) == method);
+    } catch (const cv::Exception& e) {
+        FUZZ_REQUIRE(std::string(e.what()).find("name") != std::string::npos);
+    }
     return 0;
 }

@@ -333,6 +333,14 @@ struct CV_EXPORTS_W_SIMPLE Report
 wrapped declaration as its docstring, and would otherwise reuse Report's.) */
 CV_EXPORTS_W String statusToString(Status status);
 
+/** @brief The name of a #Method as tools and samples spell it on a command line: "rcme",
+"prcme", "standard", "mlesac", "covransac". An error naming `method` for another value. */
+CV_EXPORTS_W String methodName(Method method);
+
+/** @brief The #Method of a name (methodName's, in any letter case; "cov-ransac" and "cov_ransac"
+too). An error naming `name` and listing the accepted names for another string. */
+CV_EXPORTS_W Method methodFromString(const String& name);
+
 //! @}
 
 } // namespace rcme

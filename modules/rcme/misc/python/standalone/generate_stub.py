@@ -23,7 +23,7 @@ OPTIONAL_ARRAY = "numpy.ndarray | None"
 
 # Argument names (or function.argument) -> types; a name not listed is an array input.
 ARGUMENT_TYPES = {
-    "params": "Params", "usacParams": "Any", "status": "int", "method": "int",
+    "params": "Params", "usacParams": "Any", "status": "int", "method": "int", "name": "str",
     "ransacReprojThreshold": "float", "confidence": "float", "maxIters": "int", "prob": "float",
     "threshold": "float", "focal": "float", "pp": "tuple[float, float]", "threads": "int",
     "cameraMatrix": "ArrayLike | None",
@@ -37,7 +37,8 @@ RESULT_TYPES = {"status": "int"}
 RETVAL_TYPES = {
     "estimateRelativeMotion": "Report", "estimateRelativeMotionBatch": "list[Report]",
     "recoverPose": "int", "generateScene": "SyntheticScene", "compareMotion": "MotionError",
-    "statusToString": "str", "fromUsacParams": "Params", "Params_fromUsacParams": "Params",
+    "statusToString": "str", "methodName": "str", "methodFromString": "int",
+    "fromUsacParams": "Params", "Params_fromUsacParams": "Params",
 }
 SIGNATURE = re.compile(r"^(\w+)\((.*)\)\s*->\s*(.*)$")
 

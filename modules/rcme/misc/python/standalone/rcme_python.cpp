@@ -526,6 +526,14 @@ const char* const kDocPoseCovariance =
 const char* const kDocStatusToString =
     "statusToString(status) -> retval\n"
     ".   @brief A short English name of a STATUS_* value, e.g. \"poor quality input\".";
+const char* const kDocMethodName =
+    "methodName(method) -> retval\n"
+    ".   @brief The command-line name of a METHOD_* value: rcme, prcme, standard, mlesac,\n"
+    ".   covransac.";
+const char* const kDocMethodFromString =
+    "methodFromString(name) -> retval\n"
+    ".   @brief The METHOD_* value of a name (methodName's, any letter case; cov-ransac and\n"
+    ".   cov_ransac too); an error naming `name` otherwise.";
 
 } // namespace
 
@@ -843,6 +851,13 @@ PYBIND11_MODULE(_rcme, m)
         "statusToString",
         [](int status) { return cv::rcme::statusToString(static_cast<Status>(status)); },
         py::arg("status"), kDocStatusToString);
+    m.def(
+        "methodName", [](int method) { return cv::rcme::methodName(static_cast<Method>(method)); },
+        py::arg("method"), kDocMethodName);
+    m.def(
+        "methodFromString",
+        [](const std::string& name) { return static_cast<int>(cv::rcme::methodFromString(name)); },
+        py::arg("name"), kDocMethodFromString);
 
     m.def(
         "estimateRelativeMotion",

@@ -739,6 +739,19 @@ class _RcmeSuite:
         self.assertIn("success", names[0])
         self.assertEqual(names[1], "poor quality input")
 
+    def test_method_names(self):
+        b = self.b
+        _, constants, _ = _public_header_names()
+        methods = [v for k, v in constants.items() if k.startswith("METHOD_")]
+        names = [b.methodName(m) for m in methods]
+        self.assertEqual(len(set(names)), len(methods))
+        for method, name in zip(methods, names):
+            self.assertIsInstance(name, str)
+            self.assertEqual(b.methodFromString(name), method, name)
+            self.assertEqual(b.methodFromString(name.upper()), method, name)
+        self.assertEqual(b.methodFromString("cov-ransac"), b.METHOD_COV_RANSAC)
+        self.assertRaisesNaming(["name", "standard"], b.methodFromString, "ransac")
+
     # --- input layouts and robustness
 
     def test_point_layouts(self):
