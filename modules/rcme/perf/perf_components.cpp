@@ -121,13 +121,13 @@ void runScorer(benchmark::State& state, ScorerKind kind)
         scorer = createInlierCountScorer(problem.data, 8, 1000);
         break;
     case MLESAC:
-        scorer = createMlesacScorer(problem.data, params, 8);
+        scorer = createMlesacScorer(problem.data, 8, params.maxIterations);
         break;
     case COV_RANSAC:
-        scorer = createCovarianceInlierScorer(problem.data, params, 8);
+        scorer = createCovarianceInlierScorer(problem.data, 8, params.maxIterations);
         break;
     case RCME:
-        scorer = createEntropyScorer(problem.data, params, 8);
+        scorer = createEntropyScorer(problem.data, entropyOptions(params), 8, params.maxIterations);
         break;
     }
     Score score;

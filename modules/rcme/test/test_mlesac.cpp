@@ -20,7 +20,7 @@ namespace cv {
 namespace rcme {
 namespace detail {
 // Test hook defined in mlesac_scorer.cpp: the mixing weight EM fits to `model`.
-double mlesacMixingWeight(const TwoViewData& data, const Model& model, const Params& params);
+double mlesacMixingWeight(const TwoViewData& data, const Model& model);
 } // namespace detail
 } // namespace rcme
 } // namespace cv
@@ -79,7 +79,7 @@ TEST(Rcme_Mlesac, em_recovers_the_true_mixing_weight)
         for (int seed = 0; seed < 3; ++seed) {
             const SyntheticScene scene = mlesacScene(ratio, seed);
             const TwoViewData data = sceneData(scene, false, /*inliersOnly=*/false);
-            const double gamma = mlesacMixingWeight(data, trueModel(scene), params);
+            const double gamma = mlesacMixingWeight(data, trueModel(scene));
             EXPECT_NEAR(gamma, trueInlierFraction(scene), 0.05)
                 << "ratio " << ratio << " seed " << seed;
             EXPECT_NEAR(gamma, ratio, 0.05) << "ratio " << ratio << " seed " << seed;
@@ -96,7 +96,7 @@ TEST(Rcme_Mlesac, true_model_scores_better_than_perturbed)
         const TwoViewData data = sceneData(scene, false, /*inliersOnly=*/false);
         // The perturbation is built from the motion: with no turn it is the scene's F.
         ASSERT_LT((perturbedModel(scene, 0).F - trueModel(scene).F).norm(), 1e-9);
-        auto scorer = createMlesacScorer(data, params, 8);
+        auto scorer = createMlesacScorer(data, 8, params.maxIterations);
         const Score truth = scorer->score(data, trueModel(scene));
         EXPECT_TRUE(truth.isCandidate) << "seed " << seed;
         Score previous = truth;
@@ -115,7 +115,7 @@ TEST(Rcme_Mlesac, all_outlier_input_has_no_candidate)
     for (int seed = 0; seed < 3; ++seed) {
         const SyntheticScene scene = mlesacScene(0.0, seed);
         const TwoViewData data = sceneData(scene, false, /*inliersOnly=*/false);
-        auto scorer = createMlesacScorer(data, params, 8);
+        auto scorer = createMlesacScorer(data, 8, params.maxIterations);
         EXPECT_FALSE(scorer->score(data, trueModel(scene)).isCandidate) << "seed " << seed;
         auto solver = createEightPointSolver(false);
         auto sampler = createUniformSampler(data.size(), 8, static_cast<uint64_t>(seed));
@@ -142,7 +142,7 @@ TEST(Rcme_Mlesac, classify_agrees_with_inlier_count)
     const Params params;
     const SyntheticScene scene = mlesacScene(0.5, 7);
     const TwoViewData data = sceneData(scene, false, /*inliersOnly=*/false);
-    auto scorer = createMlesacScorer(data, params, 8);
+    auto scorer = createMlesacScorer(data, 8, params.maxIterations);
     std::vector<Model> models = {trueModel(scene), perturbedModel(scene, 1.0)};
     auto solver = createEightPointSolver(false);
     auto sampler = createUniformSampler(data.size(), 8, 3);
@@ -177,8 +177,8 @@ TEST(Rcme_Mlesac, deterministic)
     const Params params;
     const SyntheticScene scene = mlesacScene(0.5, 11);
     const TwoViewData data = sceneData(scene, false, /*inliersOnly=*/false);
-    auto first = createMlesacScorer(data, params, 8);
-    auto second = createMlesacScorer(data, params, 8);
+    auto first = createMlesacScorer(data, 8, params.maxIterations);
+    auto second = createMlesacScorer(data, 8, params.maxIterations);
     const Model model = perturbedModel(scene, 0.5), other = perturbedModel(scene, 3.0);
     const Score a = first->score(data, model);
     second->score(data, other); // a different hypothesis in between must not matter
@@ -189,7 +189,7 @@ TEST(Rcme_Mlesac, deterministic)
         EXPECT_EQ(s.inlierCount, a.inlierCount);
         EXPECT_EQ(s.isCandidate, a.isCandidate);
     }
-    EXPECT_EQ(mlesacMixingWeight(data, model, params), mlesacMixingWeight(data, model, params));
+    EXPECT_EQ(mlesacMixingWeight(data, model), mlesacMixingWeight(data, model));
 }
 
 // The scorer in the shared loop, assembled as the factory would for METHOD_MLESAC.
@@ -203,7 +203,7 @@ TEST(Rcme_Mlesac, runs_in_the_ransac_loop)
         c.solver = createEightPointSolver(false);
         c.sampler = createUniformSampler(data.size(), 8, 0);
         c.termination = createAdaptiveTermination(params.confidence, params.maxIterations, 8);
-        c.scorer = createMlesacScorer(data, params, 8);
+        c.scorer = createMlesacScorer(data, 8, params.maxIterations);
         c.refiner = createGoldStandardRefiner(params.refineIterations);
         const RansacResult result = runRansac(data, c);
         if (ratio == 0.0) {

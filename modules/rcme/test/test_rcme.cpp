@@ -183,7 +183,7 @@ TEST(Rcme_Boxes, quality_test_sign_tight_passes_loose_fails)
     loose.covariance *= 1e8; // inliers' variances far above the noise floor
 
     Params params = rcmeParams(0);
-    auto scorer = createEntropyScorer(data, params, 8);
+    auto scorer = createEntropyScorer(data, entropyOptions(params), 8, params.maxIterations);
     const Score tightScore = scorer->score(data, tight);
     const Score looseScore = scorer->score(data, loose);
     EXPECT_TRUE(tightScore.isCandidate);
@@ -193,7 +193,9 @@ TEST(Rcme_Boxes, quality_test_sign_tight_passes_loose_fails)
     EXPECT_TRUE(tightScore.isBetterThan(looseScore)); // least mean entropy wins
     // The sign convention: with mu above the loose model's entropy, it passes too.
     params.entropyThreshold = looseScore.meanEntropy + 5;
-    EXPECT_TRUE(createEntropyScorer(data, params, 8)->score(data, loose).isCandidate);
+    EXPECT_TRUE(createEntropyScorer(data, entropyOptions(params), 8, params.maxIterations)
+                    ->score(data, loose)
+                    .isCandidate);
 }
 
 TEST(Rcme_Boxes, consistency_test_rejects_contaminated_samples)
@@ -210,8 +212,9 @@ TEST(Rcme_Boxes, consistency_test_rejects_contaminated_samples)
         const Params params = rcmeParams(seed);
         auto solver = createUncertainModelInstantiation(createEightPointSolver(true),
                                                         params.sampleFitIterations);
-        auto test = createModelSampleConsistencyTest(1.0, params.alpha, params.consistencyDof,
-                                                     params.sampleLeverage);
+        TwoViewData stated = data; // the test at the paper's sigma = 1, not the scene's 0.5
+        stated.sigma = 1.0;
+        auto test = createModelSampleConsistencyTest(stated, params.sampleLeverage);
         RNG rng(seed + 100);
         for (int trial = 0; trial < 20; ++trial) {
             std::vector<int> sample;
@@ -339,7 +342,7 @@ TEST(Rcme_Boxes, band_sprt_keeps_the_true_model_and_rejects_bad_ones_early)
     const Params params = rcmeParams(0, METHOD_STANDARD);
     const double meanChecked = expectSprtKeepsTruthAndRejectsBad(
         data, truth, wrongMotion(truth, data),
-        [&](uint64_t seed) { return createBandSprtVerifier(data, params, seed); });
+        [&](uint64_t seed) { return createBandSprtVerifier(data, seed); });
     std::cout << "band SPRT: " << meanChecked << " of " << data.size()
               << " points checked per bad hypothesis" << std::endl;
     EXPECT_LT(meanChecked, 0.25 * data.size());
@@ -501,7 +504,7 @@ TEST(Rcme_Boxes, sprt_keeps_the_true_model_and_rejects_bad_ones_early)
     const Params params = rcmeParams(0, METHOD_COV_RANSAC);
     const double meanChecked = expectSprtKeepsTruthAndRejectsBad(
         data, truth, wrongMotion(truth, data),
-        [&](uint64_t seed) { return createSprtVerifier(data, params, seed); });
+        [&](uint64_t seed) { return createSprtVerifier(data, seed); });
     std::cout << "SPRT: " << meanChecked << " of " << data.size()
               << " points checked per bad hypothesis" << std::endl;
     // Measured over verifier seeds 1-4: 31 to 88 of 500 (delta adapts to the wide bands a

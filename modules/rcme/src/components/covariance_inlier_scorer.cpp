@@ -28,12 +28,11 @@ constexpr double kMaxVarianceInNoiseUnits = 2.0;
 class CovarianceInlierScorer final : public Scorer
 {
 public:
-    CovarianceInlierScorer(const TwoViewData& data, const Params& params, int sampleSize)
-        : sigma_(data.sigma),
-          inlierBound_(chiSquareQuantile(1.0 - params.alpha, params.consistencyDof))
+    CovarianceInlierScorer(const TwoViewData& data, int sampleSize, int maxIterations)
+        : sigma_(data.sigma), inlierBound_(data.consistencyBound)
     {
-        minimalSupport_ = minimalSupport(data, std::sqrt(inlierBound_) * sigma_, sampleSize,
-                                         params.maxIterations);
+        minimalSupport_ =
+            minimalSupport(data, std::sqrt(inlierBound_) * sigma_, sampleSize, maxIterations);
     }
 
     Score evaluate(const TwoViewData& data, const Model& model) override
@@ -74,10 +73,10 @@ private:
 
 } // namespace
 
-std::unique_ptr<Scorer> createCovarianceInlierScorer(const TwoViewData& data, const Params& params,
-                                                     int sampleSize)
+std::unique_ptr<Scorer> createCovarianceInlierScorer(const TwoViewData& data, int sampleSize,
+                                                     int maxIterations)
 {
-    return std::make_unique<CovarianceInlierScorer>(data, params, sampleSize);
+    return std::make_unique<CovarianceInlierScorer>(data, sampleSize, maxIterations);
 }
 
 } // namespace detail

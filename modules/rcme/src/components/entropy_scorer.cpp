@@ -28,16 +28,16 @@ namespace {
 class EntropyScorer final : public Scorer
 {
 public:
-    EntropyScorer(const TwoViewData& data, const Params& params, int sampleSize)
-        : sigma_(data.sigma),
-          inlierBound_(chiSquareQuantile(1.0 - params.alpha, params.consistencyDof)),
-          entropyThreshold_(params.entropyThreshold),
-          zCritical_(normalQuantile(1.0 - params.alpha)), lambda_(params.inlierRatioFactor),
-          priorInlierRatio_(params.priorInlierRatio), pointCount_(data.size())
+    EntropyScorer(const TwoViewData& data, const EntropyOptions& options, int sampleSize,
+                  int maxIterations)
+        : sigma_(data.sigma), inlierBound_(data.consistencyBound),
+          entropyThreshold_(options.entropyThreshold),
+          zCritical_(normalQuantile(1.0 - options.alpha)), lambda_(options.inlierRatioFactor),
+          priorInlierRatio_(options.priorInlierRatio), pointCount_(data.size())
     {
         // Chance support at the inlier band of a perfectly known model (v = sigma^2).
-        minimalSupport_ = minimalSupport(data, std::sqrt(inlierBound_) * sigma_, sampleSize,
-                                         params.maxIterations);
+        minimalSupport_ =
+            minimalSupport(data, std::sqrt(inlierBound_) * sigma_, sampleSize, maxIterations);
     }
 
     Score evaluate(const TwoViewData& data, const Model& model) override
@@ -124,10 +124,16 @@ private:
 
 } // namespace
 
-std::unique_ptr<Scorer> createEntropyScorer(const TwoViewData& data, const Params& params,
-                                            int sampleSize)
+EntropyOptions entropyOptions(const Params& params)
 {
-    return std::make_unique<EntropyScorer>(data, params, sampleSize);
+    return {params.alpha, params.entropyThreshold, params.inlierRatioFactor,
+            params.priorInlierRatio};
+}
+
+std::unique_ptr<Scorer> createEntropyScorer(const TwoViewData& data, const EntropyOptions& options,
+                                            int sampleSize, int maxIterations)
+{
+    return std::make_unique<EntropyScorer>(data, options, sampleSize, maxIterations);
 }
 
 } // namespace detail

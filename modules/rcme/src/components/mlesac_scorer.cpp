@@ -37,7 +37,7 @@ namespace rcme {
 namespace detail {
 
 //! Test hook (declared in test/test_mlesac.cpp): the mixing weight MLESAC's EM fits to `model`.
-double mlesacMixingWeight(const TwoViewData& data, const Model& model, const Params& params);
+double mlesacMixingWeight(const TwoViewData& data, const Model& model);
 
 namespace {
 
@@ -50,14 +50,14 @@ constexpr double kMinWeight = 1e-9;
 class MlesacScorer final : public Scorer
 {
 public:
-    MlesacScorer(const TwoViewData& data, const Params& params, int sampleSize)
+    MlesacScorer(const TwoViewData& data, int sampleSize, int maxIterations)
         : thresholdSquared_(data.threshold * data.threshold),
           inverseTwoVariance_(0.5 / (data.sigma * data.sigma)),
           gaussianPeak_(1.0 / (std::sqrt(2.0 * CV_PI) * data.sigma)),
           densities_(data.points1.size())
     {
         outlierDensity_ = 1.0 / std::max(boundingBoxSize(data.points2).norm(), 10.0 * data.sigma);
-        minimalSupport_ = minimalSupport(data, data.threshold, sampleSize, params.maxIterations);
+        minimalSupport_ = minimalSupport(data, data.threshold, sampleSize, maxIterations);
     }
 
     Score evaluate(const TwoViewData& data, const Model& model) override
@@ -143,15 +143,16 @@ private:
 
 } // namespace
 
-std::unique_ptr<Scorer> createMlesacScorer(const TwoViewData& data, const Params& params,
-                                           int sampleSize)
+std::unique_ptr<Scorer> createMlesacScorer(const TwoViewData& data, int sampleSize,
+                                           int maxIterations)
 {
-    return std::make_unique<MlesacScorer>(data, params, sampleSize);
+    return std::make_unique<MlesacScorer>(data, sampleSize, maxIterations);
 }
 
-double mlesacMixingWeight(const TwoViewData& data, const Model& model, const Params& params)
+double mlesacMixingWeight(const TwoViewData& data, const Model& model)
 {
-    MlesacScorer scorer(data, params, /*sampleSize=*/8);
+    // The sample size and iterations only set the scorer's chance support, not the weight.
+    MlesacScorer scorer(data, /*sampleSize=*/8, /*maxIterations=*/1);
     return scorer.mixingWeight(data, model);
 }
 

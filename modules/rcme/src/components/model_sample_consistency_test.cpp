@@ -19,8 +19,8 @@ namespace {
 class ModelSampleConsistencyTest final : public ModelVerifier
 {
 public:
-    ModelSampleConsistencyTest(double sigma, double alpha, int dof, bool leverage)
-        : sigma_(sigma), bound_(chiSquareQuantile(1.0 - alpha, dof)), leverage_(leverage)
+    ModelSampleConsistencyTest(const TwoViewData& data, bool leverage)
+        : sigma_(data.sigma), bound_(data.consistencyBound), leverage_(leverage)
     {
     }
 
@@ -53,10 +53,10 @@ private:
 
 } // namespace
 
-std::unique_ptr<ModelVerifier> createModelSampleConsistencyTest(double sigma, double alpha, int dof,
+std::unique_ptr<ModelVerifier> createModelSampleConsistencyTest(const TwoViewData& data,
                                                                 bool leverage)
 {
-    return std::make_unique<ModelSampleConsistencyTest>(sigma, alpha, dof, leverage);
+    return std::make_unique<ModelSampleConsistencyTest>(data, leverage);
 }
 
 } // namespace detail

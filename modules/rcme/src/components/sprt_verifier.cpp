@@ -39,8 +39,8 @@ public:
     // instantiation's fit on its sample and the covariance (measured order of magnitude).
     static constexpr double kModelCostInPoints = 200.0;
 
-    UncertaintyConsistency(const TwoViewData& data, const Params& params)
-        : sigma_(data.sigma), bound_(chiSquareQuantile(1.0 - params.alpha, params.consistencyDof))
+    explicit UncertaintyConsistency(const TwoViewData& data)
+        : sigma_(data.sigma), bound_(data.consistencyBound)
     {
     }
     bool prepare(const Model& model)
@@ -79,7 +79,7 @@ public:
     // 1.2 ns per point in the band kernel.
     static constexpr double kModelCostInPoints = 1000.0;
 
-    BandConsistency(const TwoViewData& data, const Params&)
+    explicit BandConsistency(const TwoViewData& data)
         : thresholdSquared_(data.threshold * data.threshold)
     {
     }
@@ -102,8 +102,7 @@ private:
 template <class Consistency> class SprtVerifier final : public ModelVerifier
 {
 public:
-    SprtVerifier(const TwoViewData& data, const Params& params, uint64_t seed)
-        : consistency_(data, params)
+    SprtVerifier(const TwoViewData& data, uint64_t seed) : consistency_(data)
     {
         std::vector<int> order(data.points1.size());
         std::iota(order.begin(), order.end(), 0);
@@ -202,16 +201,14 @@ private:
 
 } // namespace
 
-std::unique_ptr<ModelVerifier> createSprtVerifier(const TwoViewData& data, const Params& params,
-                                                  uint64_t seed)
+std::unique_ptr<ModelVerifier> createSprtVerifier(const TwoViewData& data, uint64_t seed)
 {
-    return std::make_unique<SprtVerifier<UncertaintyConsistency>>(data, params, seed);
+    return std::make_unique<SprtVerifier<UncertaintyConsistency>>(data, seed);
 }
 
-std::unique_ptr<ModelVerifier> createBandSprtVerifier(const TwoViewData& data, const Params& params,
-                                                      uint64_t seed)
+std::unique_ptr<ModelVerifier> createBandSprtVerifier(const TwoViewData& data, uint64_t seed)
 {
-    return std::make_unique<SprtVerifier<BandConsistency>>(data, params, seed);
+    return std::make_unique<SprtVerifier<BandConsistency>>(data, seed);
 }
 
 } // namespace detail

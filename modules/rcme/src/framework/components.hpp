@@ -231,27 +231,35 @@ std::unique_ptr<MinimalSolver> createSevenPointSolver(bool essentialHypotheses);
 std::unique_ptr<MinimalSolver> createFivePointSolver();
 //! MLESAC's scorer (Torr & Zisserman 2000): negative log-likelihood of a Gaussian-inlier,
 //! uniform-outlier mixture of the Sampson distances, mixing weight by a few EM steps.
-std::unique_ptr<Scorer> createMlesacScorer(const TwoViewData& data, const Params& params,
-                                           int sampleSize);
+std::unique_ptr<Scorer> createMlesacScorer(const TwoViewData& data, int sampleSize,
+                                           int maxIterations);
 
 //! SPRT (Matas & Chum 2005) on the propagated-uncertainty consistency test, adaptive epsilon and
-//! delta; points in a fixed pseudo-random order from `seed`.
-std::unique_ptr<ModelVerifier> createSprtVerifier(const TwoViewData& data, const Params& params,
-                                                  uint64_t seed);
+//! delta (bound: data.consistencyBound); points in a fixed pseudo-random order from `seed`.
+std::unique_ptr<ModelVerifier> createSprtVerifier(const TwoViewData& data, uint64_t seed);
 //! The same SPRT on the threshold's Sampson band (the consistency of Standard and MLESAC).
-std::unique_ptr<ModelVerifier> createBandSprtVerifier(const TwoViewData& data, const Params& params,
-                                                      uint64_t seed);
+std::unique_ptr<ModelVerifier> createBandSprtVerifier(const TwoViewData& data, uint64_t seed);
 //! Cov-RANSAC's scorer: inliers by propagated uncertainty, most inliers wins.
-std::unique_ptr<Scorer> createCovarianceInlierScorer(const TwoViewData& data, const Params& params,
-                                                     int sampleSize);
+std::unique_ptr<Scorer> createCovarianceInlierScorer(const TwoViewData& data, int sampleSize,
+                                                     int maxIterations);
 
 // RCME's boxes (doc/algorithm.md).
 std::unique_ptr<MinimalSolver>
 createUncertainModelInstantiation(std::unique_ptr<MinimalSolver> solver, int fitIterations);
-std::unique_ptr<ModelVerifier> createModelSampleConsistencyTest(double sigma, double alpha, int dof,
+//! Box 4 of Fig. 1(b): the sample's points against the hypothesis' propagated uncertainty.
+std::unique_ptr<ModelVerifier> createModelSampleConsistencyTest(const TwoViewData& data,
                                                                 bool leverage);
-std::unique_ptr<Scorer> createEntropyScorer(const TwoViewData& data, const Params& params,
-                                            int sampleSize);
+//! RCME's inlier-set quality test: the fields of Params with these names.
+struct EntropyOptions
+{
+    double alpha;
+    double entropyThreshold;
+    double inlierRatioFactor;
+    double priorInlierRatio;
+};
+EntropyOptions entropyOptions(const Params& params);
+std::unique_ptr<Scorer> createEntropyScorer(const TwoViewData& data, const EntropyOptions& options,
+                                            int sampleSize, int maxIterations);
 //! Stops once the best candidate's mean entropy is at most entropyBound (> 0), else as `bound`.
 std::unique_ptr<Termination> createEntropyTermination(std::unique_ptr<Termination> bound,
                                                       double entropyBound);

@@ -97,18 +97,17 @@ EstimatorComponents createEstimator(const Params& params, const TwoViewData& dat
     case METHOD_PRCME:
         // pRCME is RCME without the consistency test; an exact solver would not need it.
         if (params.method == METHOD_RCME && c.solver->isOverParameterized())
-            c.verifiers.push_back(createModelSampleConsistencyTest(
-                data.sigma, params.alpha, params.consistencyDof, params.sampleLeverage));
-        c.scorer = createEntropyScorer(data, params, m);
+            c.verifiers.push_back(createModelSampleConsistencyTest(data, params.sampleLeverage));
+        c.scorer = createEntropyScorer(data, entropyOptions(params), m, params.maxIterations);
         if (!params.exactIterations)
             c.termination =
                 createEntropyTermination(std::move(c.termination), params.earlyTerminationEntropy);
         break;
     case METHOD_MLESAC:
-        c.scorer = createMlesacScorer(data, params, m);
+        c.scorer = createMlesacScorer(data, m, params.maxIterations);
         break;
     case METHOD_COV_RANSAC:
-        c.scorer = createCovarianceInlierScorer(data, params, m);
+        c.scorer = createCovarianceInlierScorer(data, m, params.maxIterations);
         break;
     default:
         CV_Error(Error::StsNotImplemented, "Params.method: not implemented yet");
@@ -117,8 +116,8 @@ EstimatorComponents createEstimator(const Params& params, const TwoViewData& dat
         // The method's own inlier test is SPRT's consistency: propagated uncertainty where the
         // hypotheses carry it, the threshold's band otherwise.
         const uint64_t seed = static_cast<uint64_t>(params.randomGeneratorState);
-        c.verifiers.push_back(uncertain ? createSprtVerifier(data, params, seed)
-                                        : createBandSprtVerifier(data, params, seed));
+        c.verifiers.push_back(uncertain ? createSprtVerifier(data, seed)
+                                        : createBandSprtVerifier(data, seed));
     }
     if (params.refine && params.refineIterations > 0)
         c.refiner = createGoldStandardRefiner(params.refineIterations);

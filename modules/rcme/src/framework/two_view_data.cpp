@@ -4,6 +4,7 @@
 // Input checking: every malformed argument is reported by name before any estimation starts.
 
 #include "framework/two_view_data.hpp"
+#include "geometry/statistics.hpp"
 
 namespace cv {
 namespace rcme {
@@ -193,6 +194,7 @@ TwoViewData makeTwoViewData(InputArray points1, InputArray points2, InputArray c
     data.Kinv = data.K.inverse();
     data.sigma = params.sigma;
     data.threshold = inlierThreshold(params);
+    data.consistencyBound = chiSquareQuantile(1.0 - params.alpha, params.consistencyDof);
     data.useEstimatedNoise = params.useEstimatedNoise;
     return data;
 }

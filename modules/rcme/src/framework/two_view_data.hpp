@@ -18,8 +18,12 @@ struct TwoViewData
     bool calibrated = false;
     Eigen::Matrix3d K = Eigen::Matrix3d::Identity();
     Eigen::Matrix3d Kinv = Eigen::Matrix3d::Identity();
-    double sigma = 1.0;            //!< noise per pixel coordinate
-    double threshold = 0.0;        //!< inlier threshold on the Sampson distance, pixels
+    double sigma = 1.0;     //!< noise per pixel coordinate
+    double threshold = 0.0; //!< inlier threshold on the Sampson distance, pixels
+    /** The bound of the propagated-uncertainty tests, d^2 <= bound * v (the paper's eq. 4):
+    chi2_dof^-1(1 - alpha) of Params::alpha and consistencyDof, resolved once by
+    makeTwoViewData; the default is that of the default alpha 0.05 and dof 1. */
+    double consistencyBound = 3.841458820694124;
     bool useEstimatedNoise = true; //!< Params::useEstimatedNoise
 
     int size() const { return static_cast<int>(points1.size()); }
