@@ -264,7 +264,7 @@ std::unique_ptr<Scorer> createEntropyScorer(const TwoViewData& data, const Entro
 std::unique_ptr<Termination> createEntropyTermination(std::unique_ptr<Termination> bound,
                                                       double entropyBound);
 
-//! The final inliers compared with a homography (components/homography_degeneracy_test.cpp).
+//! The final inliers compared with a homography (components/homography_comparison.cpp).
 struct HomographyComparison
 {
     double fundamentalGric = 0.0;
