@@ -7,6 +7,7 @@
 
 #ifdef RCME_STANDALONE_TESTS
 #include "components/residual_uncertainty.hpp"
+#include "estimation/model_fit.hpp"
 #include "framework/components.hpp"
 #include "geometry/epipolar.hpp"
 #include "geometry/motion_parameterization.hpp"

@@ -9,6 +9,7 @@
 // Optionally the hypothesis is first fitted to its own sample by Gauss-Newton, for which that
 // covariance is exact to first order (Params::sampleFitIterations).
 
+#include "estimation/model_fit.hpp"
 #include "framework/components.hpp"
 #include "geometry/epipolar.hpp"
 

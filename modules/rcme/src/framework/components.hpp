@@ -303,12 +303,6 @@ RotationComparison compareWithRotation(const TwoViewData& data, const Eigen::Mat
 //! decompositions without translation are left out. Calibrated data only.
 std::vector<Model> homographyMotions(const TwoViewData& data, const Eigen::Matrix3d& H);
 
-/** Gold Standard fit of `model` (motion if it has one, else F) on the points `indices`, with the
-first-order covariance of the result (Model::uncertaintyDof and friends; left at 0 when the
-information matrix is ill-conditioned). False when there are too few points to fit. */
-bool fitModelOn(const TwoViewData& data, const std::vector<int>& indices, int maxIterations,
-                Model& model);
-
 } // namespace detail
 } // namespace rcme
 } // namespace cv

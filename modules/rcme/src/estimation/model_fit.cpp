@@ -1,0 +1,376 @@
+// This file is part of the rcme module. It is subject to the license terms in the LICENSE file
+// found in the top-level directory of this distribution.
+
+// The library's least-squares service: the Gold Standard maximum-likelihood fit (Hartley &
+// Zisserman, alg. 11.3) in its first-order form, Levenberg-Marquardt on the Sampson distances
+// over a minimal parameterization of the model as it is: the 5-DoF motion when it has one, the
+// 7-DoF F otherwise. The Gauss-Newton matrix at the optimum also gives the model's first-order
+// covariance, sigma^2 (J^T J)^-1 (on a minimal sample: the paper's Sigma_p). Used by the
+// refiner (box 4 of Fig. 1), RCME's model instantiation and the ambiguity test's refits.
+
+#include "estimation/model_fit.hpp"
+#include "geometry/epipolar.hpp"
+#include "geometry/motion_parameterization.hpp"
+#include "geometry/statistics.hpp"
+
+namespace cv {
+namespace rcme {
+namespace detail {
+
+namespace {
+
+// The calibrated problem: the state is the motion; F = K^-T [t]x R K^-1.
+struct MotionProblem
+{
+    static constexpr int kDof = MotionTangent::kDof;
+    const Eigen::Matrix3d& Kinv;
+    Eigen::Matrix3d R;
+    Eigen::Vector3d t;
+    Eigen::Matrix3d pendingR;
+    Eigen::Vector3d pendingT;
+
+    Eigen::Matrix3d fundamental(const Eigen::Matrix3d& Rm, const Eigen::Vector3d& tm) const
+    {
+        return Kinv.transpose() * skew(tm) * Rm * Kinv;
+    }
+    Eigen::Matrix3d current() const { return fundamental(R, t); }
+    void derivatives(Eigen::Matrix3d dF[kDof]) const
+    {
+        MotionTangent(R, t).essentialDerivatives(dF);
+        for (int k = 0; k < kDof; ++k)
+            dF[k] = Kinv.transpose() * dF[k] * Kinv;
+    }
+    Eigen::Matrix3d propose(const Eigen::Matrix<double, kDof, 1>& delta)
+    {
+        MotionTangent(R, t).apply(delta, pendingR, pendingT);
+        return fundamental(pendingR, pendingT);
+    }
+    void accept()
+    {
+        R = pendingR;
+        t = pendingT;
+    }
+};
+
+// The uncalibrated problem: the state is a rank-2 F in Hartley-normalized coordinates,
+// F = T2^T Fn T1; in pixels the entries of F differ by orders of magnitude and the steps would
+// be badly conditioned. The cost stays the pixel Sampson distance.
+// The tangent (an SVD) is kept with Fn, which changes only on accept().
+struct FundamentalProblem
+{
+    static constexpr int kDof = FundamentalTangent::kDof;
+    Eigen::Matrix3d T1, T2;
+    Eigen::Matrix3d Fn;
+    FundamentalTangent tangent;
+    Eigen::Matrix3d pendingFn;
+
+    FundamentalProblem(const Eigen::Matrix3d& T1_, const Eigen::Matrix3d& T2_,
+                       const Eigen::Matrix3d& normalizedF)
+        : T1(T1_), T2(T2_), Fn(FundamentalTangent(normalizedF).compose()), tangent(Fn)
+    {
+    }
+    Eigen::Matrix3d toPixels(const Eigen::Matrix3d& normalized) const
+    {
+        return T2.transpose() * normalized * T1;
+    }
+    Eigen::Matrix3d current() const { return toPixels(Fn); }
+    void derivatives(Eigen::Matrix3d dF[kDof]) const
+    {
+        tangent.derivatives(dF);
+        for (int k = 0; k < kDof; ++k)
+            dF[k] = toPixels(dF[k]);
+    }
+    Eigen::Matrix3d propose(const Eigen::Matrix<double, kDof, 1>& delta)
+    {
+        pendingFn = tangent.apply(delta);
+        return toPixels(pendingFn);
+    }
+    void accept()
+    {
+        Fn = FundamentalTangent(pendingFn).compose();
+        tangent = FundamentalTangent(Fn);
+    }
+};
+
+// The fits below visit inliers[0], inliers[stride], inliers[2 stride], ...: every point with
+// stride 1, an evenly spaced subset of a large set otherwise (leastSquares).
+double sampsonCost(const TwoViewData& data, const std::vector<int>& inliers,
+                   const Eigen::Matrix3d& F, size_t stride = 1)
+{
+    double cost = 0;
+    for (size_t k = 0; k < inliers.size(); k += stride) {
+        const size_t i = static_cast<size_t>(inliers[k]);
+        cost += sampsonDistanceSquared(F, data.points1[i], data.points2[i]);
+    }
+    return cost;
+}
+
+// Gauss-Newton system J^T J, J^T r of the Sampson distances at the problem's current state.
+template <class Problem>
+void normalEquations(const TwoViewData& data, const std::vector<int>& inliers,
+                     const Problem& problem,
+                     Eigen::Matrix<double, Problem::kDof, Problem::kDof>& JtJ,
+                     Eigen::Matrix<double, Problem::kDof, 1>& Jtr, size_t stride = 1)
+{
+    constexpr int P = Problem::kDof;
+    const Eigen::Matrix3d F = problem.current();
+    Eigen::Matrix3d dF[P];
+    problem.derivatives(dF);
+    JtJ.setZero();
+    Jtr.setZero();
+    Eigen::Matrix<double, 1, P> g;
+    double d = 0;
+    for (size_t k = 0; k < inliers.size(); k += stride) {
+        const size_t i = static_cast<size_t>(inliers[k]);
+        if (!sampsonDistanceAndGradient<P>(F, dF, data.points1[i], data.points2[i], d, g))
+            continue;
+        JtJ.noalias() += g.transpose() * g;
+        Jtr.noalias() += g.transpose() * d;
+    }
+}
+
+// Levenberg-Marquardt with multiplicative damping on the diagonal. Returns the final cost.
+template <class Problem>
+double levenbergMarquardt(const TwoViewData& data, const std::vector<int>& inliers,
+                          Problem& problem, int maxIterations, size_t stride = 1)
+{
+    constexpr int P = Problem::kDof;
+    double cost = sampsonCost(data, inliers, problem.current(), stride);
+    double damping = 1e-3;
+    Eigen::Matrix<double, P, P> JtJ;
+    Eigen::Matrix<double, P, 1> Jtr;
+    for (int iteration = 0; iteration < maxIterations; ++iteration) {
+        normalEquations(data, inliers, problem, JtJ, Jtr, stride);
+        bool improved = false;
+        while (damping < 1e12) {
+            Eigen::Matrix<double, P, P> A = JtJ;
+            A.diagonal() *= 1.0 + damping;
+            const Eigen::Matrix<double, P, 1> delta = A.ldlt().solve(-Jtr);
+            if (!delta.allFinite())
+                break;
+            const double candidateCost = sampsonCost(data, inliers, problem.propose(delta), stride);
+            if (candidateCost < cost) {
+                problem.accept();
+                improved = cost - candidateCost > 1e-12 * cost;
+                cost = candidateCost;
+                damping = std::max(1e-9, damping * 0.1);
+                break;
+            }
+            damping *= 10;
+        }
+        if (!improved)
+            break;
+    }
+    return cost;
+}
+
+// A large fit iterates on an evenly spaced subset (kMaxIteratedPoints, two_view_data.hpp); the
+// final estimate then takes a few more iterations on every point.
+constexpr int kFullSetIterations = 3;
+
+template <class Problem>
+void finishOnEveryPoint(const TwoViewData& data, const std::vector<int>& inliers, Problem& problem,
+                        int maxIterations)
+{
+    if (inliers.size() > kMaxIteratedPoints)
+        levenbergMarquardt(data, inliers, problem, std::min(maxIterations, kFullSetIterations));
+}
+
+template <class Problem>
+void leastSquares(const TwoViewData& data, const std::vector<int>& inliers, Problem& problem,
+                  int maxIterations, bool finish)
+{
+    levenbergMarquardt(data, inliers, problem, maxIterations, subsetStride(inliers.size()));
+    if (finish)
+        finishOnEveryPoint(data, inliers, problem, maxIterations);
+}
+
+// Fewest residual degrees of freedom (inliers minus the model's) for the estimated noise to
+// replace the stated sigma: from 30 on, the estimate's relative standard error is below ~15 %.
+constexpr int kMinNoiseDof = 30;
+
+// Which covariance a fit gets: the stated sigma's sigma^2 (J^T J)^-1 (a hypothesis, a minimal
+// sample: the paper's Sigma_p), or the final estimate's (see finalUncertainty).
+enum class Uncertainty
+{
+    kStatedNoise,
+    kFinalEstimate
+};
+
+// sigma^2 (J^T J)^-1 at the problem's state, with the directions it refers to. None when J^T J is
+// ill-conditioned: the points do not determine the model (e.g. a degenerate minimal sample).
+// Unless everyPoint (the final estimate), a large set gives J^T J from its evenly spaced subset,
+// scaled to the whole set: a hypothesis's or a decision's covariance needs no more.
+template <class Problem>
+void setUncertainty(const TwoViewData& data, const std::vector<int>& indices,
+                    const Problem& problem, Model& model, bool everyPoint = true)
+{
+    constexpr int P = Problem::kDof;
+    constexpr double kConditionLimit = 1e-10;
+    Eigen::Matrix<double, P, P> JtJ;
+    Eigen::Matrix<double, P, 1> Jtr;
+    const size_t stride = everyPoint ? 1 : subsetStride(indices.size());
+    normalEquations(data, indices, problem, JtJ, Jtr, stride);
+    if (stride > 1)
+        JtJ *= static_cast<double>(indices.size()) /
+               static_cast<double>((indices.size() + stride - 1) / stride);
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, P, P>> eig(JtJ);
+    model.uncertaintyDof = 0;
+    if (!(eig.eigenvalues()(0) > kConditionLimit * eig.eigenvalues()(P - 1)))
+        return;
+    model.uncertaintyDof = P;
+    model.covariance.setZero();
+    model.covariance.template topLeftCorner<P, P>() =
+        data.sigma * data.sigma * eig.eigenvectors() *
+        eig.eigenvalues().cwiseInverse().asDiagonal() * eig.eigenvectors().transpose();
+    problem.derivatives(model.directions);
+}
+
+// The final estimate's noise and covariance. The noise comes from the inliers' Sampson residuals
+// with the fit's degrees of freedom removed (n - dof) and the band's truncation undone: the band
+// |d| < threshold keeps only the central part of the Gaussian, whose mean square alone would
+// underestimate sigma^2 (by 24 % at 1.96 sigma). The fit is least squares on the points inside
+// the band, i.e. an M-estimator with psi(d) = d 1{|d| < c}; its (sandwich) covariance is
+// sigma^2 / h(c / sigma) (J^T J)^-1 with h = truncatedNormalVariance (the points a step of the
+// model would push across the band's edge take their information with them), 1.32 times the
+// plain sigma^2 (J^T J)^-1 at 1.96 sigma.
+template <class Problem>
+void setFinalUncertainty(const TwoViewData& data, const std::vector<int>& indices,
+                         const Problem& problem, Model& model)
+{
+    setUncertainty(data, indices, problem, model);
+    const int dof = static_cast<int>(indices.size()) - Problem::kDof;
+    model.noiseSigma =
+        dof > 0 ? noiseFromTruncatedResiduals(sampsonCost(data, indices, problem.current()) / dof,
+                                              data.threshold)
+                : std::numeric_limits<double>::quiet_NaN();
+    if (model.uncertaintyDof == 0)
+        return;
+    const bool useEstimate =
+        data.useEstimatedNoise && dof >= kMinNoiseDof && std::isfinite(model.noiseSigma);
+    const double sigma = useEstimate ? model.noiseSigma : data.sigma;
+    model.covariance *=
+        sigma * sigma / (data.sigma * data.sigma * truncatedNormalVariance(data.threshold / sigma));
+}
+
+// A point that carries this share of the information on some direction of the model outweighs
+// all the others together there (leverage h > 1/2): they cannot confirm that it is an inlier.
+constexpr double kMaxLeverage = 0.5;
+
+// Removes from `indices` the inliers the others do not confirm, returns whether any was removed.
+// A point's residual d at a fit it took part in has variance sigma^2 (1 - h), h its leverage, so
+// the band's test on d is lax for a point of high leverage (it drags the fit onto itself): an
+// outlier in the band near an epipole or at a depth far from the scene's takes over directions
+// of the motion and makes its covariance confident where it is wrong. Such a point must pass the
+// band on its studentized residual, |d| / sqrt(1 - h) < threshold, and have h <= 1/2.
+template <class Problem>
+bool dropUnconfirmedInliers(const TwoViewData& data, const Problem& problem,
+                            std::vector<int>& indices)
+{
+    constexpr int P = Problem::kDof;
+    Eigen::Matrix<double, P, P> JtJ;
+    Eigen::Matrix<double, P, 1> Jtr;
+    normalEquations(data, indices, problem, JtJ, Jtr);
+    const Eigen::LDLT<Eigen::Matrix<double, P, P>> information(JtJ);
+    if (information.info() != Eigen::Success)
+        return false;
+    const Eigen::Matrix3d F = problem.current();
+    Eigen::Matrix3d dF[P];
+    problem.derivatives(dF);
+    Eigen::Matrix<double, 1, P> g;
+    double d = 0;
+    const double threshold2 = data.threshold * data.threshold;
+    const size_t before = indices.size();
+    indices.erase(std::remove_if(indices.begin(), indices.end(),
+                                 [&](int i) {
+                                     if (!sampsonDistanceAndGradient<P>(
+                                             F, dF, data.points1[static_cast<size_t>(i)],
+                                             data.points2[static_cast<size_t>(i)], d, g))
+                                         return false;
+                                     const double h = g * information.solve(g.transpose());
+                                     return h > kMaxLeverage || d * d > threshold2 * (1.0 - h);
+                                 }),
+                  indices.end());
+    return indices.size() < before;
+}
+
+template <class Problem>
+void setUncertaintyFor(Uncertainty kind, const TwoViewData& data, const std::vector<int>& indices,
+                       const Problem& problem, Model& model)
+{
+    if (kind == Uncertainty::kFinalEstimate)
+        setFinalUncertainty(data, indices, problem, model);
+    else
+        setUncertainty(data, indices, problem, model, /*everyPoint=*/false);
+}
+
+// Least squares on `indices`; the final estimate is refitted without the inliers the others do
+// not confirm, when that leaves enough points to determine it.
+template <class Problem>
+void fitProblem(const TwoViewData& data, const std::vector<int>& indices, int maxIterations,
+                Uncertainty uncertainty, Problem& problem, Model& model,
+                std::vector<int>* confirmed)
+{
+    const bool final = uncertainty == Uncertainty::kFinalEstimate;
+    // On a large set the iterations on every point wait until the inliers are settled.
+    leastSquares(data, indices, problem, maxIterations, final && !confirmed);
+    if (final && confirmed) {
+        *confirmed = indices;
+        if (dropUnconfirmedInliers(data, problem, *confirmed) &&
+            confirmed->size() >= 2 * static_cast<size_t>(Problem::kDof)) {
+            leastSquares(data, *confirmed, problem, maxIterations, true);
+            setFinalUncertainty(data, *confirmed, problem, model);
+            return;
+        }
+        *confirmed = indices;
+        finishOnEveryPoint(data, indices, problem, maxIterations);
+    }
+    setUncertaintyFor(uncertainty, data, indices, problem, model);
+}
+
+// `confirmed` (final estimate only): the points the fit ends up using.
+bool fitModel(const TwoViewData& data, const std::vector<int>& indices, int maxIterations,
+              Uncertainty uncertainty, Model& model, std::vector<int>* confirmed = nullptr)
+{
+    if (model.hasMotion) {
+        CV_Assert(data.calibrated);
+        if (indices.size() < static_cast<size_t>(MotionProblem::kDof))
+            return false;
+        MotionProblem problem{data.Kinv, model.R, model.t, model.R, model.t};
+        fitProblem(data, indices, maxIterations, uncertainty, problem, model, confirmed);
+        model.R = problem.R;
+        model.t = problem.t;
+        model.E = skew(model.t) * model.R;
+        model.F = fundamentalFromEssential(model.E, data.Kinv);
+        return model.F.allFinite();
+    }
+    // A 7-DoF F needs 7 constraints (a 7-point sample determines it exactly).
+    if (indices.size() < static_cast<size_t>(FundamentalProblem::kDof))
+        return false;
+    Eigen::Matrix3d T1, T2;
+    if (!normalizingTransform(data.points1, indices, T1) ||
+        !normalizingTransform(data.points2, indices, T2))
+        return false;
+    FundamentalProblem problem(T1, T2, T2.transpose().inverse() * model.F * T1.inverse());
+    fitProblem(data, indices, maxIterations, uncertainty, problem, model, confirmed);
+    model.F = normalizeFundamental(problem.current());
+    return model.F.allFinite();
+}
+
+} // namespace
+
+bool fitModelOn(const TwoViewData& data, const std::vector<int>& indices, int maxIterations,
+                Model& model)
+{
+    return fitModel(data, indices, maxIterations, Uncertainty::kStatedNoise, model);
+}
+
+bool fitFinalModelOn(const TwoViewData& data, const std::vector<int>& indices, int maxIterations,
+                     Model& model, std::vector<int>& confirmed)
+{
+    return fitModel(data, indices, maxIterations, Uncertainty::kFinalEstimate, model, &confirmed);
+}
+
+} // namespace detail
+} // namespace rcme
+} // namespace cv

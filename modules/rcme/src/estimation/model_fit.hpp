@@ -1,0 +1,33 @@
+// This file is part of the rcme module. It is subject to the license terms in the LICENSE file
+// found in the top-level directory of this distribution.
+
+#ifndef OPENCV_RCME_ESTIMATION_MODEL_FIT_HPP
+#define OPENCV_RCME_ESTIMATION_MODEL_FIT_HPP
+
+#include "framework/components.hpp"
+
+#include <vector>
+
+namespace cv {
+namespace rcme {
+namespace detail {
+
+/** Gold Standard fit of `model` (motion if it has one, else F) on the points `indices`, with the
+first-order covariance of the result at the stated sigma (Model::uncertaintyDof and friends; left
+at 0 when the information matrix is ill-conditioned). False when there are too few points to
+fit. */
+bool fitModelOn(const TwoViewData& data, const std::vector<int>& indices, int maxIterations,
+                Model& model);
+
+/** The final estimate's fit: as fitModelOn, then refitted without the inliers the others do not
+confirm (leverage, studentized residual) when enough remain; `confirmed` gets the points used,
+and the covariance is the final estimate's (the estimated noise, truncation-corrected; see
+Report::covariance). */
+bool fitFinalModelOn(const TwoViewData& data, const std::vector<int>& indices, int maxIterations,
+                     Model& model, std::vector<int>& confirmed);
+
+} // namespace detail
+} // namespace rcme
+} // namespace cv
+
+#endif // OPENCV_RCME_ESTIMATION_MODEL_FIT_HPP
