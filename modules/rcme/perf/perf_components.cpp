@@ -10,7 +10,7 @@
 #ifdef RCME_GOOGLE_BENCHMARK
 
 #include "components/random.hpp"
-#include "framework/components.hpp"
+#include "framework/component_factories.hpp"
 #include "framework/two_view_data.hpp"
 
 namespace {

@@ -9,7 +9,7 @@
 
 #ifdef RCME_STANDALONE_TESTS
 
-#include "framework/components.hpp"
+#include "framework/component_factories.hpp"
 #include "geometry/epipolar.hpp"
 #include "geometry/motion_parameterization.hpp"
 #include "geometry/statistics.hpp"

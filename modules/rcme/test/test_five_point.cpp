@@ -8,7 +8,7 @@
 
 #ifdef RCME_STANDALONE_TESTS
 
-#include "framework/components.hpp"
+#include "framework/component_factories.hpp"
 #include "geometry/epipolar.hpp"
 #include "test_internal_helpers.hpp"
 

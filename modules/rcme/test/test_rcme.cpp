@@ -8,7 +8,7 @@
 #ifdef RCME_STANDALONE_TESTS
 #include "components/residual_uncertainty.hpp"
 #include "estimation/model_fit.hpp"
-#include "framework/components.hpp"
+#include "framework/component_factories.hpp"
 #include "geometry/epipolar.hpp"
 #include "geometry/motion_parameterization.hpp"
 #include "test_internal_helpers.hpp"

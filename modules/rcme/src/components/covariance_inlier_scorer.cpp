@@ -8,7 +8,7 @@
 // a loose model's wide bands cannot inflate it.
 
 #include "components/residual_uncertainty.hpp"
-#include "framework/components.hpp"
+#include "framework/component_factories.hpp"
 #include "geometry/statistics.hpp"
 
 namespace cv {

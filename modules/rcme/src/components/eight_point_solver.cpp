@@ -8,7 +8,7 @@
 // it keeps about half as many inliers as the rank-2 F (measured on the generic scene), so the
 // Standard method scores the rank-2 F and recovers the motion from the selected model only.
 
-#include "framework/components.hpp"
+#include "framework/component_factories.hpp"
 #include "geometry/epipolar.hpp"
 #include "solvers/fundamental_eight_point.hpp"
 

@@ -16,7 +16,7 @@
 // The score is psi: the candidate of least mean entropy is selected (eq. 8).
 
 #include "components/residual_uncertainty.hpp"
-#include "framework/components.hpp"
+#include "framework/component_factories.hpp"
 #include "geometry/statistics.hpp"
 
 namespace cv {

@@ -6,7 +6,7 @@
 // over-parameterized. The math is solvers/essential_five_point.cpp; this adapter takes the
 // sample's points to normalized camera coordinates and makes each E a Model.
 
-#include "framework/components.hpp"
+#include "framework/component_factories.hpp"
 #include "geometry/epipolar.hpp"
 #include "solvers/essential_five_point.hpp"
 

@@ -5,7 +5,7 @@
 // selected model's inliers, and the final estimate's inlier band and covariance.
 
 #include "estimation/model_fit.hpp"
-#include "framework/components.hpp"
+#include "framework/component_factories.hpp"
 #include "geometry/epipolar.hpp"
 #include "geometry/motion_parameterization.hpp"
 

@@ -12,6 +12,7 @@
 // manifold (F: 3, H: 2) and k its parameters (F: 7, H: 8). The homography wins when its GRIC is
 // not larger.
 
+#include "components/homography_comparison.hpp"
 #include "framework/components.hpp"
 #include "geometry/epipolar.hpp"
 #include "geometry/motion_parameterization.hpp"

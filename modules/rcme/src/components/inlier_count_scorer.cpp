@@ -6,7 +6,7 @@
 // number exceeds what chance would give (minimalSupport), so all-outlier input ends as "poor
 // quality input" instead of an 8-point fit to noise.
 
-#include "framework/components.hpp"
+#include "framework/component_factories.hpp"
 #include "geometry/residual_bands.hpp"
 #include "geometry/statistics.hpp"
 

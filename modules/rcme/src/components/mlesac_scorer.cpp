@@ -29,7 +29,7 @@
 // The Gaussian densities of a hypothesis are computed once into a buffer sized in the
 // constructor (no allocation per score); threads evaluate on their own clone().
 
-#include "framework/components.hpp"
+#include "framework/component_factories.hpp"
 #include "geometry/epipolar.hpp"
 
 namespace cv {

@@ -7,7 +7,7 @@
 // over-parameterized solvers (an exact solver fits its sample by construction).
 
 #include "components/residual_uncertainty.hpp"
-#include "framework/components.hpp"
+#include "framework/component_factories.hpp"
 #include "geometry/statistics.hpp"
 
 namespace cv {

@@ -10,7 +10,7 @@
 // Sample j still depends only on (seed, j), like the uniform sampler's.
 
 #include "components/random.hpp"
-#include "framework/components.hpp"
+#include "framework/component_factories.hpp"
 
 namespace cv {
 namespace rcme {

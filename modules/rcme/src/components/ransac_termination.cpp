@@ -8,7 +8,7 @@
 // and RCME's early termination (Sec. IV-D.2): stop once a candidate's mean entropy is below a
 // preset bound.
 
-#include "framework/components.hpp"
+#include "framework/component_factories.hpp"
 
 namespace cv {
 namespace rcme {

@@ -9,7 +9,7 @@
 // projected onto the essential manifold so that every hypothesis is a motion; that projection no
 // longer fits the sample exactly.
 
-#include "framework/components.hpp"
+#include "framework/component_factories.hpp"
 #include "geometry/epipolar.hpp"
 #include "solvers/epipolar_null_space.hpp"
 

@@ -16,7 +16,7 @@
 
 #include "components/random.hpp"
 #include "components/residual_uncertainty.hpp"
-#include "framework/components.hpp"
+#include "framework/component_factories.hpp"
 #include "geometry/residual_bands.hpp"
 #include "geometry/statistics.hpp"
 

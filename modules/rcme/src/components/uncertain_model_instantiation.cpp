@@ -10,7 +10,7 @@
 // covariance is exact to first order (Params::sampleFitIterations).
 
 #include "estimation/model_fit.hpp"
-#include "framework/components.hpp"
+#include "framework/component_factories.hpp"
 #include "geometry/epipolar.hpp"
 
 namespace cv {

@@ -4,7 +4,7 @@
 // Box "random sampling" of Fig. 1: every m-subset of the n points equally likely.
 
 #include "components/random.hpp"
-#include "framework/components.hpp"
+#include "framework/component_factories.hpp"
 
 namespace cv {
 namespace rcme {

@@ -9,64 +9,14 @@
 // implementation per interface, assembled by estimator_factory.cpp and run by ransac_loop.cpp;
 // each implementation lives in its own file under components/.
 
-#include "framework/two_view_data.hpp"
+#include "framework/model.hpp"
+
+#include <memory>
+#include <vector>
 
 namespace cv {
 namespace rcme {
 namespace detail {
-
-//! One hypothesis (and, after selection, the estimate).
-struct Model
-{
-    Eigen::Matrix3d F = Eigen::Matrix3d::Zero(); //!< pixel fundamental matrix, ||F|| = 1
-    //! Set when the hypothesis is an essential matrix (calibrated data): F = K^-T E K^-1 up to
-    //! scale. Otherwise zero, and the motion comes from F once a model is selected.
-    Eigen::Matrix3d E = Eigen::Matrix3d::Zero();
-    //! Motion, valid when hasMotion: x2 = R x1 + t, |t| = 1.
-    bool hasMotion = false;
-    Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
-    Eigen::Vector3d t = Eigen::Vector3d::Zero();
-    /** First-order uncertainty of the model: the covariance of its uncertaintyDof parameters
-    theta (0: unknown; 5: the motion's tangent space, see MotionTangent; 7: F's, see
-    FundamentalTangent) and the directions dF/dtheta_k in pixels, so that a residual's variance
-    can be propagated without knowing the parameterization. Top-left block used. */
-    int uncertaintyDof = 0;
-    Eigen::Matrix<double, 7, 7> covariance = Eigen::Matrix<double, 7, 7>::Zero();
-    Eigen::Matrix3d directions[7];
-    //! Noise sigma estimated from the final inliers' residuals (Refiner::finalize), NaN if none.
-    double noiseSigma = std::numeric_limits<double>::quiet_NaN();
-};
-
-/** Gives a model of calibrated data its motion: E (from F when the hypothesis was not
-essential) is decomposed with cheirality on `inliers`, and E, F are set from (R, t). False when
-no decomposition puts any inlier in front of both cameras. */
-bool recoverMotion(const TwoViewData& data, const std::vector<uchar>& inliers, Model& model);
-
-/** The same from the points of a minimal sample alone (cheirality decided by them), with
-`points1`, `points2` as buffers for the sample's points. */
-bool recoverMotionFromSample(const TwoViewData& data, const std::vector<int>& sample, Model& model,
-                             std::vector<Eigen::Vector2d>& points1,
-                             std::vector<Eigen::Vector2d>& points2);
-
-/** Whether two motions are different answers: their rotations differ by more than 5 deg or their
-translation directions by more than 15 deg, the accuracy a right motion is held to
-(doc/results.md). Both models must have their motion. */
-bool areDistinctMotions(const Model& a, const Model& b);
-
-//! Quality of a hypothesis as a scorer sees it; lower value is better.
-struct Score
-{
-    double value = std::numeric_limits<double>::infinity();
-    int inlierCount = 0;
-    double meanEntropy = std::numeric_limits<double>::quiet_NaN();
-    //! Whether the hypothesis passed the method's acceptance tests (may become the estimate).
-    bool isCandidate = false;
-    //! What the hypothesis tells the run-wide tests (RCME: its ratio of points in the noise-only
-    //! band when it passes the quality test, else 0); read by Scorer::commit().
-    double runEvidence = 0;
-
-    bool isBetterThan(const Score& other) const { return value < other.value; }
-};
 
 //! Draws minimal samples. Sample j depends only on (seed, j), so runs are reproducible and
 //! iterations can be evaluated in any order, on any thread.
@@ -204,104 +154,6 @@ least the image-2 line distance over sqrt(2)); the bound is the Binomial(n - m, 
 0.05 / maxIterations (Bonferroni over the hypotheses), plus the m sample points. A test of
 non-randomness in the spirit of PROSAC's. */
 int minimalSupport(const TwoViewData& data, double threshold, int sampleSize, int maxIterations);
-
-// Factories of the component implementations, one file each under components/.
-std::unique_ptr<Sampler> createUniformSampler(int pointCount, int sampleSize, uint64_t seed);
-//! PROSAC over `order` (point indices, best first); order.size() >= sampleSize.
-std::unique_ptr<Sampler> createProsacSampler(std::vector<int> order, int sampleSize, uint64_t seed);
-//! With `essentialHypotheses` and calibrated data, hypotheses are projected onto the essential
-//! manifold (E set); otherwise they are rank-2 F.
-std::unique_ptr<MinimalSolver> createEightPointSolver(bool essentialHypotheses);
-std::unique_ptr<Scorer> createInlierCountScorer(const TwoViewData& data, int sampleSize,
-                                                int maxIterations);
-// cleanSampleSuccessRate: Params::cleanSampleSuccessRate (1: the classic bound).
-std::unique_ptr<Termination> createAdaptiveTermination(double confidence, int maxIterations,
-                                                       int sampleSize,
-                                                       double cleanSampleSuccessRate = 1.0);
-std::unique_ptr<Termination> createExactTermination(int iterations);
-std::unique_ptr<Refiner> createGoldStandardRefiner(int maxIterations);
-
-//! 7-point solver for F (Hartley & Zisserman 11.1.2): up to three rank-2 F per sample, exact
-//! (7 parameters for 7 DoF). With calibrated data the solutions are projected to E when
-//! `essentialHypotheses` is set, like the 8-point solver.
-std::unique_ptr<MinimalSolver> createSevenPointSolver(bool essentialHypotheses);
-//! 5-point solver for E (Nister 2004, solvers/essential_five_point.cpp; calibrated data only):
-//! up to ten essential matrices per sample, exact (5 parameters for 5 DoF), returned with model.E
-//! and model.F set; those that cannot put the whole sample in front of both cameras are dropped.
-std::unique_ptr<MinimalSolver> createFivePointSolver();
-//! MLESAC's scorer (Torr & Zisserman 2000): negative log-likelihood of a Gaussian-inlier,
-//! uniform-outlier mixture of the Sampson distances, mixing weight by a few EM steps.
-std::unique_ptr<Scorer> createMlesacScorer(const TwoViewData& data, int sampleSize,
-                                           int maxIterations);
-
-//! SPRT (Matas & Chum 2005) on the propagated-uncertainty consistency test, adaptive epsilon and
-//! delta (bound: data.consistencyBound); points in a fixed pseudo-random order from `seed`.
-std::unique_ptr<ModelVerifier> createSprtVerifier(const TwoViewData& data, uint64_t seed);
-//! The same SPRT on the threshold's Sampson band (the consistency of Standard and MLESAC).
-std::unique_ptr<ModelVerifier> createBandSprtVerifier(const TwoViewData& data, uint64_t seed);
-//! Cov-RANSAC's scorer: inliers by propagated uncertainty, most inliers wins.
-std::unique_ptr<Scorer> createCovarianceInlierScorer(const TwoViewData& data, int sampleSize,
-                                                     int maxIterations);
-
-// RCME's boxes (doc/algorithm.md).
-std::unique_ptr<MinimalSolver>
-createUncertainModelInstantiation(std::unique_ptr<MinimalSolver> solver, int fitIterations);
-//! Box 4 of Fig. 1(b): the sample's points against the hypothesis' propagated uncertainty.
-std::unique_ptr<ModelVerifier> createModelSampleConsistencyTest(const TwoViewData& data,
-                                                                bool leverage);
-//! RCME's inlier-set quality test: the fields of Params with these names.
-struct EntropyOptions
-{
-    double alpha;
-    double entropyThreshold;
-    double inlierRatioFactor;
-    double priorInlierRatio;
-};
-EntropyOptions entropyOptions(const Params& params);
-std::unique_ptr<Scorer> createEntropyScorer(const TwoViewData& data, const EntropyOptions& options,
-                                            int sampleSize, int maxIterations);
-//! Stops once the best candidate's mean entropy is at most entropyBound (> 0), else as `bound`.
-std::unique_ptr<Termination> createEntropyTermination(std::unique_ptr<Termination> bound,
-                                                      double entropyBound);
-
-//! The final inliers compared with a homography (components/homography_comparison.cpp).
-struct HomographyComparison
-{
-    double fundamentalGric = 0.0;
-    double homographyGric = 0.0;
-    //! A homography explains the inliers at least as well as F: planar scene or pure rotation.
-    bool homographyExplainsInliers = false;
-    Eigen::Matrix3d H = Eigen::Matrix3d::Zero(); //!< the homography (pixels), when fitted
-};
-/** Torr's GRIC of F and of a homography fitted (RANSAC) to the method's inliers `mask` and F's
-support (the points within data.threshold of it), over the points either model explains, with
-the noise of the homography's inliers (at most data.sigma); with fewer than 8 points or no
-homography, nothing is flagged. */
-HomographyComparison compareWithHomography(const TwoViewData& data, const Eigen::Matrix3d& F,
-                                           const std::vector<uchar>& mask);
-
-//! With K, the inliers against a rotation about the camera centre (x2 ~ K R K^-1 x1).
-struct RotationComparison
-{
-    double rotationGric = 0.0;
-    double motionGric = 0.0;
-    //! The rotation explains the inliers at least as well as the motion: no translation seen.
-    bool rotationExplainsInliers = false;
-    Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
-    //! sigma^2 (J^T J)^-1 of the rotation increment omega, R exp([omega]x), when determined.
-    Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
-    bool hasCovariance = false;
-    std::vector<uchar> inliers; //!< the points the rotation explains (2-DoF chi-square, 95 %)
-};
-/** Fits a rotation to the inliers `mask` (Procrustes on the viewing rays, then Gauss-Newton on
-the homography Sampson error) and compares it with the motion of F by Torr's GRIC (rotation:
-manifold dimension 2, 3 parameters; motion: 3 and 5), as compareWithHomography does. Calibrated
-data only. */
-RotationComparison compareWithRotation(const TwoViewData& data, const Eigen::Matrix3d& F,
-                                       const std::vector<uchar>& mask);
-//! The motions (R, unit t) of cv::decomposeHomographyMat(H, K), as models with E and F set;
-//! decompositions without translation are left out. Calibrated data only.
-std::vector<Model> homographyMotions(const TwoViewData& data, const Eigen::Matrix3d& H);
 
 } // namespace detail
 } // namespace rcme

@@ -6,6 +6,8 @@
 
 #include "framework/estimator_factory.hpp"
 
+#include "framework/component_factories.hpp"
+
 #include <numeric>
 
 namespace cv {

@@ -3,6 +3,7 @@
 
 #include "framework/ransac_loop.hpp"
 
+#include "components/homography_comparison.hpp"
 #include "estimation/model_fit.hpp"
 #include "framework/candidate_set.hpp"
 #include "geometry/epipolar.hpp"

@@ -1,0 +1,73 @@
+// This file is part of the rcme module. It is subject to the license terms in the LICENSE file
+// found in the top-level directory of this distribution.
+
+#ifndef OPENCV_RCME_FRAMEWORK_MODEL_HPP
+#define OPENCV_RCME_FRAMEWORK_MODEL_HPP
+
+// The model space of the loop: a hypothesis (F, and with K its motion and covariance), its
+// score, and what turns an essential matrix into a motion.
+
+#include "framework/two_view_data.hpp"
+
+namespace cv {
+namespace rcme {
+namespace detail {
+
+//! One hypothesis (and, after selection, the estimate).
+struct Model
+{
+    Eigen::Matrix3d F = Eigen::Matrix3d::Zero(); //!< pixel fundamental matrix, ||F|| = 1
+    //! Set when the hypothesis is an essential matrix (calibrated data): F = K^-T E K^-1 up to
+    //! scale. Otherwise zero, and the motion comes from F once a model is selected.
+    Eigen::Matrix3d E = Eigen::Matrix3d::Zero();
+    //! Motion, valid when hasMotion: x2 = R x1 + t, |t| = 1.
+    bool hasMotion = false;
+    Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
+    Eigen::Vector3d t = Eigen::Vector3d::Zero();
+    /** First-order uncertainty of the model: the covariance of its uncertaintyDof parameters
+    theta (0: unknown; 5: the motion's tangent space, see MotionTangent; 7: F's, see
+    FundamentalTangent) and the directions dF/dtheta_k in pixels, so that a residual's variance
+    can be propagated without knowing the parameterization. Top-left block used. */
+    int uncertaintyDof = 0;
+    Eigen::Matrix<double, 7, 7> covariance = Eigen::Matrix<double, 7, 7>::Zero();
+    Eigen::Matrix3d directions[7];
+    //! Noise sigma estimated from the final inliers' residuals (Refiner::finalize), NaN if none.
+    double noiseSigma = std::numeric_limits<double>::quiet_NaN();
+};
+
+/** Gives a model of calibrated data its motion: E (from F when the hypothesis was not
+essential) is decomposed with cheirality on `inliers`, and E, F are set from (R, t). False when
+no decomposition puts any inlier in front of both cameras. */
+bool recoverMotion(const TwoViewData& data, const std::vector<uchar>& inliers, Model& model);
+
+/** The same from the points of a minimal sample alone (cheirality decided by them), with
+`points1`, `points2` as buffers for the sample's points. */
+bool recoverMotionFromSample(const TwoViewData& data, const std::vector<int>& sample, Model& model,
+                             std::vector<Eigen::Vector2d>& points1,
+                             std::vector<Eigen::Vector2d>& points2);
+
+/** Whether two motions are different answers: their rotations differ by more than 5 deg or their
+translation directions by more than 15 deg, the accuracy a right motion is held to
+(doc/results.md). Both models must have their motion. */
+bool areDistinctMotions(const Model& a, const Model& b);
+
+//! Quality of a hypothesis as a scorer sees it; lower value is better.
+struct Score
+{
+    double value = std::numeric_limits<double>::infinity();
+    int inlierCount = 0;
+    double meanEntropy = std::numeric_limits<double>::quiet_NaN();
+    //! Whether the hypothesis passed the method's acceptance tests (may become the estimate).
+    bool isCandidate = false;
+    //! What the hypothesis tells the run-wide tests (RCME: its ratio of points in the noise-only
+    //! band when it passes the quality test, else 0); read by Scorer::commit().
+    double runEvidence = 0;
+
+    bool isBetterThan(const Score& other) const { return value < other.value; }
+};
+
+} // namespace detail
+} // namespace rcme
+} // namespace cv
+
+#endif // OPENCV_RCME_FRAMEWORK_MODEL_HPP
