@@ -142,7 +142,8 @@ struct CV_EXPORTS_W_SIMPLE Params
     `cv2.rcme.Params.fromUsacParams(u)` (also `cv2.rcme.Params_fromUsacParams(u)`). */
     CV_WRAP static Params fromUsacParams(const UsacParams& usacParams);
     /** @brief The configuration of the paper's experiments for @p method: the defaults but for
-    the 8-point solver, no local optimisation and neither the ambiguity nor the uncertainty test.
+    the 8-point solver, no local optimisation, neither the ambiguity nor the uncertainty test, and
+    the classic adaptive bound (cleanSampleSuccessRate 1).
     The defaults differ where measurement found them better (doc/results.md). */
     CV_WRAP static Params asPublished(Method method);
 

@@ -708,7 +708,7 @@ PYBIND11_MODULE(_rcme, m)
     const char* docAsPublished =
         "asPublished(method) -> retval\n"
         ".   The paper's configuration of method: 8-point solver, no local optimisation, no "
-        "ambiguity or uncertainty test.";
+        "ambiguity or uncertainty test, the classic adaptive bound (cleanSampleSuccessRate 1).";
     const auto asPublished = [](int method) {
         return Params::asPublished(static_cast<Method>(method));
     };
