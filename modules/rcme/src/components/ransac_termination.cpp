@@ -9,6 +9,7 @@
 // preset bound.
 
 #include "framework/component_factories.hpp"
+#include "geometry/statistics.hpp"
 
 namespace cv {
 namespace rcme {
@@ -37,10 +38,8 @@ public:
             bound_ = 0;
             return;
         }
-        const double goodSample = cleanSampleSuccessRate_ * cleanSample;
-        if (goodSample <= 0.0)
-            return;
-        const double needed = std::log(1.0 - confidence_) / std::log1p(-goodSample);
+        const double needed =
+            samplesForConfidence(confidence_, cleanSampleSuccessRate_ * cleanSample);
         if (needed < maxIterations_)
             bound_ = std::min(bound_, static_cast<int>(std::ceil(needed)));
     }

@@ -137,6 +137,16 @@ struct EstimatorComponents
     std::unique_ptr<Refiner> refiner; //!< null when refinement is off
     //! Refits new candidates on their inliers (LO-RANSAC); null when local optimisation is off.
     std::unique_ptr<Refiner> localOptimizer;
+    /** LO-RANSAC's inner sampling, for a loop that ends short of its confidence bound: minimal
+    samples drawn from the inliers of the best candidate (ransac_loop.cpp). */
+    struct InnerSampling
+    {
+        int samplesPerRound = 0; //!< 0: off
+        //! Params::confidence and cleanSampleSuccessRate: the bound the loop's samples are held to.
+        double confidence = 0.99;
+        double cleanSampleSuccessRate = 1.0;
+        uint64_t seed = 0; //!< Params::randomGeneratorState
+    } innerSampling;
     //! Evaluate hypotheses on several threads (Params::isParallel); the result is the same.
     bool parallel = false;
     //! cv::getTickCount() value at which the hypothesis loop stops (Params::timeBudget); 0: none.

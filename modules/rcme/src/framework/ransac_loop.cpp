@@ -4,10 +4,12 @@
 #include "framework/ransac_loop.hpp"
 
 #include "components/homography_comparison.hpp"
+#include "components/random.hpp"
 #include "estimation/model_fit.hpp"
 #include "framework/candidate_set.hpp"
 #include "geometry/epipolar.hpp"
 #include "geometry/motion_parameterization.hpp"
+#include "geometry/statistics.hpp"
 
 namespace cv {
 namespace rcme {
@@ -176,16 +178,20 @@ public:
         }
         if (c.localOptimizer)
             localInliers_.assign(static_cast<size_t>(data.size()), 0);
+        if (c.innerSampling.samplesPerRound > 0)
+            innerPool_.reserve(static_cast<size_t>(data.size()));
         if (c.ambiguityMargin > 0 && data.calibrated)
             rivals_ = std::make_unique<RivalMotions>(kRivalCapacity);
         const size_t solutions = static_cast<size_t>(c.solver->maxSolutions());
         slots_.resize(static_cast<size_t>(batch_));
+        slots_.push_back(IterationSlot()); // the last one holds the inner samples
         for (IterationSlot& slot : slots_) {
             slot.sample.resize(static_cast<size_t>(c.solver->sampleSize()));
             slot.models.reserve(solutions);
             slot.alive.resize(solutions);
             slot.scores.resize(solutions);
         }
+        innerDraw_.resize(static_cast<size_t>(c.solver->sampleSize()));
     }
 
     void run(CandidateSet& candidates, RansacResult& result)
@@ -205,6 +211,8 @@ public:
                 commit(slots_[static_cast<size_t>(k)], candidates, result);
         }
         result.iterations = iteration;
+        if (!result.outOfTime)
+            sampleInsideBest(candidates, result);
         if (rivals_)
             result.rivals = rivals_->rivals();
         if (result.hypotheses > 0)
@@ -291,6 +299,67 @@ private:
         }
     }
 
+    // Whether the loop drew fewer samples than the confidence bound asks for the inlier ratio of
+    // `best` (the loop stopped at Params::maxIterations, or ran exactly that many).
+    bool fellShortOfTheBound(const CandidateSet::Candidate& best, int iterations) const
+    {
+        const EstimatorComponents::InnerSampling& inner = c_.innerSampling;
+        const double inlierRatio = static_cast<double>(best.score.inlierCount) / data_.size();
+        const double cleanSample = std::pow(inlierRatio, static_cast<double>(innerDraw_.size()));
+        return samplesForConfidence(inner.confidence, inner.cleanSampleSuccessRate * cleanSample) >
+               iterations;
+    }
+
+    /* LO-RANSAC's inner sampling (Chum et al. 2003), with minimal samples, after a loop that fell
+    short of its confidence bound (a low inlier ratio, or a solver whose clean samples often fit
+    a wrong model): minimal samples drawn from the best candidate's inliers are committed like the
+    loop's, in rounds, while they improve the best and the bound is still unmet. A best of a
+    wrong motion still holds mostly true inliers, so its inner samples are mostly clean where the
+    loop's were not (w^m); minimal ones, because a fit to many of its inliers stays in its basin.
+    A loop that met its bound is left as it is. The draws depend only on (seed, draw count); SPRT
+    does not see them, so its state is that of the loop. */
+    void sampleInsideBest(CandidateSet& candidates, RansacResult& result)
+    {
+        constexpr int kMaxRounds = 4;
+        const EstimatorComponents::InnerSampling& inner = c_.innerSampling;
+        if (inner.samplesPerRound <= 0)
+            return;
+        const size_t m = innerDraw_.size();
+        IterationSlot& slot = slots_.back();
+        Lane& lane = lanes_[0]; // the loop's own components: no evaluation is under way
+        Score source;
+        for (int round = 0; round < kMaxRounds; ++round) {
+            if (c_.deadline != 0 && getTickCount() >= c_.deadline)
+                return;
+            const CandidateSet::Candidate* best = candidates.best(*c_.scorer);
+            if (!best || (round > 0 && !best->score.isBetterThan(source)) ||
+                !fellShortOfTheBound(*best, result.iterations))
+                return;
+            source = best->score;
+            c_.scorer->classify(data_, best->model, localInliers_);
+            innerPool_.clear();
+            for (size_t i = 0; i < localInliers_.size(); ++i)
+                if (localInliers_[i])
+                    innerPool_.push_back(static_cast<int>(i));
+            if (innerPool_.size() < 2 * m)
+                return;
+            for (int k = 0; k < inner.samplesPerRound; ++k) {
+                uint64_t state = iterationState(~inner.seed, innerDrawn_++);
+                drawDistinct(state, static_cast<uint32_t>(innerPool_.size()), 0, innerDraw_);
+                for (size_t j = 0; j < m; ++j)
+                    slot.sample[j] = innerPool_[static_cast<size_t>(innerDraw_[j])];
+                slot.solutions = lane.solver->estimate(data_, slot.sample, slot.models);
+                slot.pointsChecked = 0;
+                for (size_t h = 0; h < slot.models.size(); ++h) {
+                    slot.alive[h] = passes(lane.verifiers, slot, h);
+                    if (slot.alive[h])
+                        slot.scores[h] = lane.scorer->evaluate(data_, slot.models[h]);
+                }
+                commit(slot, candidates, result);
+            }
+        }
+    }
+
     // The points a verifier checks are counted per slot, not read from the verifiers at the end:
     // a parallel run verifies iterations it does not commit, on copies of the verifiers.
     bool passes(const std::vector<ModelVerifier*>& verifiers, IterationSlot& slot, size_t h) const
@@ -313,6 +382,9 @@ private:
     std::vector<IterationSlot> slots_;
     std::vector<ModelVerifier*> sequentialVerifiers_; //!< from the first sequential one on
     std::vector<uchar> localInliers_;                 //!< local optimisation's buffer, reused
+    std::vector<int> innerPool_;                      //!< the best candidate's inliers
+    std::vector<int> innerDraw_;                      //!< an inner sample, as pool positions
+    int innerDrawn_ = 0;                              //!< inner samples drawn so far
     std::unique_ptr<RivalMotions> rivals_;            //!< with the ambiguity test only
     long long pointsEvaluated_ = 0; //!< residuals evaluated by verification and scoring
 };

@@ -70,6 +70,13 @@ int binomialTailBound(int trials, double p, double level)
     return trials + 1;
 }
 
+double samplesForConfidence(double confidence, double goodSample)
+{
+    if (goodSample <= 0.0)
+        return std::numeric_limits<double>::infinity();
+    return std::log(1.0 - confidence) / std::log1p(-goodSample);
+}
+
 double truncatedNormalVariance(double k)
 {
     CV_Assert(k > 0);

@@ -18,6 +18,11 @@ double chiSquareQuantile(double p, int dof);
 exceeds only with probability `level`. */
 int binomialTailBound(int trials, double p, double level);
 
+/** RANSAC's bound: how many independent samples hold at least one good sample with probability
+`confidence`, when each is good with probability `goodSample`: log(1 - confidence) /
+log(1 - goodSample); +infinity when goodSample <= 0. */
+double samplesForConfidence(double confidence, double goodSample);
+
 /** E[z^2 | |z| < k] for a standard normal z: the variance left to residuals that an inlier band
 of half-width k sigma truncates (1 for k -> infinity, k^2 / 3 for k -> 0). */
 double truncatedNormalVariance(double k);

@@ -213,7 +213,13 @@ struct CV_EXPORTS_W_SIMPLE Params
     CV_PROP_RW double earlyTerminationEntropy;
     /** Local optimisation (LO-RANSAC @cite Chum2003LORANSAC): each hypothesis that enters the
     candidate set is refitted on its inliers (a few Gauss-Newton steps) and the refit competes as
-    a candidate too. Default true (the paper's experiments: false). */
+    a candidate too. When the loop ends short of its confidence bound (fewer iterations than
+    log(1 - confidence) / log(1 - cleanSampleSuccessRate w^m) for the best candidate's inlier ratio
+    w: a low inlier ratio, or maxIterations reached), minimal samples drawn from the best
+    candidate's inliers (LO-RANSAC's inner sampling; 100 per round, up to 4 rounds while they
+    improve it) compete too: a wrong motion's inliers are mostly true ones, so they find the true
+    motion that the loop's few clean samples missed (doc/results.md, "Inner sampling"). A loop
+    that met its bound is not changed. Default true (the paper's experiments: false). */
     CV_PROP_RW bool localOptimization;
     /** After the loop, compare the final inliers' fit by F with their fit by a homography
     (Torr's GRIC @cite Torr1998GRIC). When the homography explains them at least as well (a planar
@@ -277,7 +283,7 @@ struct CV_EXPORTS_W_SIMPLE Report
     CV_PROP_RW Mat t;           //!< 3x1 unit translation, only with a camera matrix
     CV_PROP_RW Mat mask;        //!< Nx1 CV_8U inlier mask, 0 or 1, always sized
     CV_PROP_RW int inlierCount; //!< number of ones in mask
-    CV_PROP_RW int iterations;  //!< samples drawn
+    CV_PROP_RW int iterations;  //!< samples drawn by the loop (not local optimisation's inner ones)
     /** Mean number of correspondences whose residual was evaluated per hypothesis, in
     verification and scoring: the number of points for methods that score every hypothesis on
     all of them, fewer with Cov-RANSAC's SPRT, which rejects bad hypotheses after a few points.

@@ -746,7 +746,8 @@ PYBIND11_MODULE(_rcme, m)
         .plain("earlyTerminationEntropy", &Params::earlyTerminationEntropy,
                "RCME: stop once a candidate's mean excess entropy is at most this; <= 0 off")
         .plain("localOptimization", &Params::localOptimization,
-               "refit new candidates on their inliers (LO-RANSAC); default True")
+               "refit new candidates on their inliers, and after a loop short of its confidence "
+               "bound draw minimal samples among the best's inliers (LO-RANSAC); default True")
         .plain("degeneracyTest", &Params::degeneracyTest,
                "final inliers fit a homography as well as F -> degenerate status; default True")
         .plain("ambiguityMargin", &Params::ambiguityMargin,

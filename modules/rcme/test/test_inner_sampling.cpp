@@ -1,0 +1,95 @@
+// This file is part of the rcme module. It is subject to the license terms in the LICENSE file
+// found in the top-level directory of this distribution.
+
+// Local optimisation's inner sampling (EstimatorComponents::innerSampling): minimal samples drawn
+// from the inliers of each new best candidate. Internal (it has no Params switch of its own), so
+// standalone only, as test_components.cpp.
+
+#include "test_precomp.hpp"
+
+#ifdef RCME_STANDALONE_TESTS
+
+#include "framework/estimator_factory.hpp"
+#include "framework/ransac_loop.hpp"
+
+#include <opencv2/core/eigen.hpp>
+
+namespace opencv_test {
+namespace {
+
+using namespace cv::rcme::detail;
+
+// What the loop selects (before the final tests) on `scene` with the default Params, with the
+// factory's inner samples or with `innerSamples` per round instead.
+RansacResult runLoop(const SyntheticScene& scene, int seed, int innerSamples = -1)
+{
+    Params params;
+    params.randomGeneratorState = seed;
+    const TwoViewData data =
+        makeTwoViewData(scene.points1, scene.points2, scene.cameraMatrix, params);
+    EstimatorComponents components = createEstimator(params, data);
+    if (innerSamples >= 0)
+        components.innerSampling.samplesPerRound = innerSamples;
+    return runRansac(data, components);
+}
+
+bool loopSelectsTheTrueMotion(const SyntheticScene& scene, int seed, int innerSamples = -1)
+{
+    const RansacResult result = runLoop(scene, seed, innerSamples);
+    if (!result.model.hasMotion || result.model.t.isZero())
+        return false;
+    Mat R, t;
+    eigen2cv(result.model.R, R);
+    eigen2cv(Eigen::Vector3d(result.model.t), t);
+    const MotionError error = compareMotion(R, t, scene.R, scene.t);
+    return error.rotationDeg <= 5 && error.translationDeg <= 15; // issue 15's "right"
+}
+
+TEST(Rcme_InnerSampling, finds_the_true_motion_where_uniform_samples_are_rarely_clean)
+{
+    // The corridor at inlier ratio 0.3: 1000 uniform 5-point samples hold about 2.4 clean ones,
+    // and most clean ones of five noisy points in a narrow view fit a wrong motion. A wrong best
+    // still holds mostly true inliers, so samples drawn among them find the true motion.
+    // Tuning seeds of doc/results.md (100-299; the benchmark reports on 0-49). Measured on seeds
+    // 100-159 (gcc, Release): 25 of 60 right without inner samples, 40 with them.
+    const int runs = testRuns(60, 3);
+    int right[2] = {0, 0};
+    for (int k = 0; k < runs; ++k) {
+        const SyntheticScene scene = generateScene(testSceneParams(SCENE_CORRIDOR, 100 + k, 0.3));
+        right[0] += loopSelectsTheTrueMotion(scene, k, 0);
+        right[1] += loopSelectsTheTrueMotion(scene, k);
+    }
+    std::cout << "true motion selected without / with inner samples: " << right[0] << " / "
+              << right[1] << " of " << runs << std::endl;
+    if (kChecksStatistics) {
+        EXPECT_GE(right[1], right[0] + 10);
+        EXPECT_GE(right[1], 36);
+    }
+}
+
+TEST(Rcme_InnerSampling, leaves_a_loop_that_met_its_bound_as_it_is)
+{
+    // Inlier ratio 0.7: the adaptive bound of the 5-point solver (q = 0.3) is about 90 samples,
+    // far below the 1000 drawn, so no inner sample is drawn and nothing changes. At 0.3 it is
+    // about 6300: the inner samples add hypotheses.
+    for (double inlierRatio : {0.7, 0.3}) {
+        const SyntheticScene scene = generateScene(testSceneParams(SCENE_CORRIDOR, 7, inlierRatio));
+        const RansacResult without = runLoop(scene, 3, 0);
+        const RansacResult with = runLoop(scene, 3);
+        ASSERT_EQ(with.status, STATUS_SUCCESS) << with.message;
+        ASSERT_EQ(without.status, STATUS_SUCCESS) << without.message;
+        EXPECT_EQ(with.iterations, without.iterations);
+        if (inlierRatio > 0.5) {
+            EXPECT_EQ(with.hypotheses, without.hypotheses);
+            EXPECT_EQ((with.model.F - without.model.F).norm(), 0.0);
+            EXPECT_EQ(with.mask, without.mask);
+        } else {
+            EXPECT_GT(with.hypotheses, without.hypotheses);
+        }
+    }
+}
+
+} // namespace
+} // namespace opencv_test
+
+#endif // RCME_STANDALONE_TESTS
