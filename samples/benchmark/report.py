@@ -278,6 +278,32 @@ def confusion_table(rows, method_names, datasets):
                   + ["caught % of wrong", "false alarms % of right"], lines)
 
 
+AUC_LIMIT_DEG = 10.0
+
+
+def auc(rows, limit_deg=AUC_LIMIT_DEG):
+    """AUC@limit of max(rotation, translation direction error): the area under the share of runs
+    within an error e for e from 0 to the limit, over the limit; that is the mean over the runs of
+    max(0, 1 - e / limit). A run without a motion (a flag, no model) counts as an infinite error.
+    None without runs."""
+    if not rows:
+        return None
+    scores = [max(0.0, 1.0 - max(r["rot"], r["trans"]) / limit_deg)
+              if r["ok"] and "rot" in r else 0.0 for r in rows]
+    return float(np.mean(scores))
+
+
+def auc_table(groups, method_names):
+    """groups: [(label, rows)] of runs on pairs with a pose; a row per method, a column per
+    group, AUC@10 to four digits."""
+    lines = []
+    for method in method_names:
+        values = [auc(_select(rows, method=method)) for _, rows in groups]
+        if any(v is not None for v in values):
+            lines.append([method] + ["%.4f" % v if v is not None else "n/a" for v in values])
+    return _table(["method"] + [label for label, _ in groups], lines)
+
+
 def confusion_summary(groups, method_names):
     """groups: [(label, rows)]; a row per group and method with the targets' three rates."""
     lines = []

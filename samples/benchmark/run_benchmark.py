@@ -243,6 +243,10 @@ def write_report(args, run):
     return path, png
 
 
+def _rows_of(rows, method):
+    return [r for r in rows if r["method"] == method]
+
+
 def confusion_section(run, names, real_datasets, N_max):
     """The confusion tables (report.CONFUSION_LEGEND): the targets' rates per suite, then every
     dataset and method, at exactly N_max hypotheses and at the libraries' adaptive defaults."""
@@ -276,6 +280,16 @@ def confusion_section(run, names, real_datasets, N_max):
                 suites(defaults) + [s for s in synthetic if s[1]]
                 + [("all suites", defaults + corridor_adaptive + hard_adaptive)],
                 DEFAULT_SETTINGS_METHODS)]
+    calibrated = [r for r in real if r["dataset"] in pose]
+    lines += ["### Accuracy: AUC@%.0f on the calibrated real pairs\n" % report.AUC_LIMIT_DEG,
+              "Mean over the runs of max(0, 1 - e / %.0f deg), e = max(rotation error, "
+              "translation direction error); a run without a motion (a flag, no model) counts as "
+              "an infinite error. Exactly N = %d: %d runs per rcme method (every seed), one per "
+              "pair for the peers; adaptive: one run per pair.\n" % (
+                  report.AUC_LIMIT_DEG, N_max, len(_rows_of(calibrated, methods.DEFAULT_METHOD))),
+              report.auc_table([("exactly N = %d" % N_max, calibrated),
+                                ("adaptive", [r for r in defaults if r["dataset"] in pose])],
+                               names)]
     lines += ["### Per dataset, exactly N = %d\n" % N_max,
               report.confusion_table(real, names, real_datasets)]
     if corridor_rows:

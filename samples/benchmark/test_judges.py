@@ -50,5 +50,13 @@ class ConfusionCells(unittest.TestCase):
         self.assertEqual(rates["false_alarm"], report._pct(1, 2))
 
 
+class Auc(unittest.TestCase):
+    def test_mean_of_the_error_ramp_with_flags_as_infinite_errors(self):
+        rows = [{"ok": True, "rot": 0.0, "trans": 0.0}, {"ok": True, "rot": 1.0, "trans": 5.0},
+                {"ok": True, "rot": 20.0, "trans": 1.0}, {"ok": False, "flagged": True}]
+        self.assertAlmostEqual(report.auc(rows), (1.0 + 0.5 + 0.0 + 0.0) / 4)
+        self.assertIsNone(report.auc([]))
+
+
 if __name__ == "__main__":
     unittest.main()

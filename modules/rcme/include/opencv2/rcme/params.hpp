@@ -85,10 +85,10 @@ Only #STATUS_SUCCESS comes with a model, and #STATUS_PURE_ROTATION with a rotati
 other status the returned matrices are empty and the mask is all zeros.
 
 How often a status was right, with the default Params on the benchmark's runs with ground truth
-(exactly 1000 iterations; README.md and doc/results.md, "The default configuration"): a success
-came with a right model in 752 of 777 runs (357 of 357 calibrated real pairs, 121 of 129
-F-only pairs, 274 of 291 synthetic scenes); of 51 other statuses, the model turned down was
-wrong in 37 and right in 14.
+(exactly 1000 iterations, the pairs the ground truth can judge; README.md and doc/results.md,
+"Inner sampling"): a success came with a right model in 749 of 762 runs (357 of 357 calibrated
+real pairs, 111 of 114 F-only pairs, 281 of 291 synthetic scenes); of 45 other statuses, the
+model turned down was wrong in 34 and right in 11.
 */
 enum Status
 #ifndef OPENCV_BINDING_PARSER // OpenCV 4.6's binding generator cannot read an enum base
