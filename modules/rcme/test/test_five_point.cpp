@@ -1,8 +1,9 @@
 // This file is part of the rcme module. It is subject to the license terms in the LICENSE file
 // found in the top-level directory of this distribution.
 
-// The 5-point solver (components/five_point_solver.cpp). Internal (cv::rcme::detail), so
-// standalone build only, like test_components.cpp.
+// The 5-point solver (solvers/essential_five_point.cpp behind
+// components/epipolar_solver.cpp). Internal (cv::rcme::detail), so standalone build only, like
+// test_components.cpp.
 
 #include "test_precomp.hpp"
 
