@@ -241,13 +241,12 @@ struct CV_EXPORTS_W_SIMPLE Params
     CV_PROP_RW double ambiguityMargin;
     /** The uncertainty test, with a camera matrix and refinement: a motion whose rotation
     standard deviation about an axis (Report::rotationStdDeg) exceeds this many degrees gives
-    #STATUS_UNDETERMINED_MOTION. <= 0 disables it. Default 4 deg: on the synthetic tuning scenes
-    (doc/results.md, "Uncertainty bounds, again") the bounds (4, 8) flagged the fewest right
-    motions of those that missed about as few wrong ones, 7 of 711 against 12 for (2, 6); the
-    paper's experiments: 0. */
+    #STATUS_UNDETERMINED_MOTION. <= 0 disables it. Default 2 deg (5 deg at 95 % for three axes),
+    chosen on synthetic scenes (doc/results.md, "Failure signals"); the paper's experiments: 0. */
     CV_PROP_RW double maxRotationStdDeg;
     /** The same for the translation direction (Report::translationStdDeg), degrees. <= 0
-    disables it. Default 8 deg, chosen with maxRotationStdDeg; the paper's experiments: 0. */
+    disables it. Default 6 deg (15 deg at 95 % for two axes), chosen on synthetic scenes; the
+    paper's experiments: 0. */
     CV_PROP_RW double maxTranslationStdDeg;
     /** For #SAMPLER_PROSAC: one score per correspondence, higher is better (e.g. the negated
     ratio of the two best descriptor distances), CV_32F or CV_64F. Empty (default): the points

@@ -754,9 +754,9 @@ PYBIND11_MODULE(_rcme, m)
                "a distinct motion within this many sigma^2 of cost -> undetermined; default 2; "
                "<= 0: off")
         .plain("maxRotationStdDeg", &Params::maxRotationStdDeg,
-               "rotation std above this (degrees) -> undetermined; default 4; <= 0: off")
+               "rotation std above this (degrees) -> undetermined; default 2; <= 0: off")
         .plain("maxTranslationStdDeg", &Params::maxTranslationStdDeg,
-               "translation direction std above this (degrees) -> undetermined; default 8; "
+               "translation direction std above this (degrees) -> undetermined; default 6; "
                "<= 0: off")
         .mat("matchQuality", &Params::matchQuality,
              "SAMPLER_PROSAC: one score per correspondence, higher is better; None: sorted")
