@@ -243,10 +243,6 @@ def write_report(args, run):
     return path, png
 
 
-def _rows_of(rows, method):
-    return [r for r in rows if r["method"] == method]
-
-
 def confusion_section(run, names, real_datasets, N_max):
     """The confusion tables (report.CONFUSION_LEGEND): the targets' rates per suite, then every
     dataset and method, at exactly N_max hypotheses and at the libraries' adaptive defaults."""
@@ -286,7 +282,7 @@ def confusion_section(run, names, real_datasets, N_max):
               "translation direction error); a run without a motion (a flag, no model) counts as "
               "an infinite error. Exactly N = %d: %d runs per rcme method (every seed), one per "
               "pair for the peers; adaptive: one run per pair.\n" % (
-                  report.AUC_LIMIT_DEG, N_max, len(_rows_of(calibrated, methods.DEFAULT_METHOD))),
+                  report.AUC_LIMIT_DEG, N_max, sum(r["method"] == methods.DEFAULT_METHOD for r in calibrated)),
               report.auc_table([("exactly N = %d" % N_max, calibrated),
                                 ("adaptive", [r for r in defaults if r["dataset"] in pose])],
                                names)]
