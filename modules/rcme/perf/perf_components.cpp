@@ -11,6 +11,7 @@
 
 #include "components/random.hpp"
 #include "framework/component_factories.hpp"
+#include "framework/model_space.hpp"
 #include "framework/two_view_data.hpp"
 
 namespace {
@@ -79,13 +80,13 @@ std::unique_ptr<MinimalSolver> fivePoint()
 }
 std::unique_ptr<MinimalSolver> rcmeEightPoint()
 {
-    return createUncertainModelInstantiation(createEightPointSolver(true), 5);
+    return createUncertainModelInstantiation(createEightPointSolver(true), createMotionSpace(), 5);
 }
 
 // The fit's own cost is the difference of the two RCME lines (its covariance needs no fit).
 std::unique_ptr<MinimalSolver> rcmeEightPointWithoutFit()
 {
-    return createUncertainModelInstantiation(createEightPointSolver(true), 0);
+    return createUncertainModelInstantiation(createEightPointSolver(true), createMotionSpace(), 0);
 }
 
 BENCHMARK_CAPTURE(runSolver, 8point, eightPoint, false)->Name("solver/8-point");

@@ -41,21 +41,27 @@ void setMotionUncertainty(const Eigen::Matrix<double, 5, 5>& covariance, Report&
     report.translationStdDeg = detail::translationDirectionStdDeg(covariance);
 }
 
-void fail(Report& report, std::vector<uchar>& mask, Status status, const std::string& message)
+// What the estimate holds: F, and its motion when the model space made one (with K).
+void setEstimate(Report& report, const detail::Model& model)
 {
-    report = Report();
-    report.status = status;
-    report.message = message;
-    std::fill(mask.begin(), mask.end(), 0);
+    report.F = toMat(model.F);
+    if (model.hasMotion) {
+        report.E = toMat(detail::skew(model.t) * model.R);
+        report.R = toMat(model.R);
+        report.t = toMat(model.t);
+        if (model.uncertaintyDof == detail::MotionTangent::kDof)
+            setMotionUncertainty(model.covariance.topLeftCorner<5, 5>(), report);
+    }
+    report.noiseSigma = model.noiseSigma;
 }
 
 // The model a failed estimation rejected, for diagnostics only (Report::rejectedF...).
-void setRejected(Report& report, const detail::Model& model, bool calibrated)
+void setRejected(Report& report, const detail::Model& model)
 {
     if (!model.F.allFinite() || model.F.isZero())
         return;
     report.rejectedF = toMat(model.F);
-    if (calibrated && model.hasMotion) {
+    if (model.hasMotion) {
         report.rejectedR = toMat(model.R);
         report.rejectedT = toMat(model.t);
     }
@@ -71,57 +77,29 @@ Estimation estimate(InputArray points1, InputArray points2, InputArray cameraMat
     if (params.timeBudget > 0)
         components.deadline =
             start + static_cast<int64>(std::min(params.timeBudget, 1e9) * getTickFrequency());
-    detail::RansacResult result = detail::runRansac(data, components);
-    if (params.degeneracyTest)
-        detail::decideDegeneracy(data, components, result);
-    detail::finalizeModel(data, components, result);
-    detail::resolveRivalMotions(data, components, result);
-    detail::checkMotionUncertainty(data, components, result);
+    const detail::RansacResult result = detail::estimateModel(data, components);
 
     Estimation out;
     Report& report = out.report;
     out.mask = result.mask;
+    out.inFront = result.inFront;
     report.status = result.status;
     report.message = result.message;
     if (result.status == STATUS_SUCCESS) {
-        detail::Model& model = result.model;
-        if (data.calibrated) {
-            // The loop gives every calibrated estimate its motion.
-            CV_Assert(model.hasMotion);
-            if (detail::countPointsInFront(model.R, model.t, data.points1, data.points2, data.Kinv,
-                                           &out.mask, &out.inFront) == 0) {
-                fail(report, out.mask, STATUS_DEGENERATE_CONFIGURATION,
-                     "no decomposition of E puts the inliers in front of both cameras");
-                setRejected(report, model, data.calibrated);
-            } else {
-                report.F = toMat(model.F);
-                report.E = toMat(detail::skew(model.t) * model.R);
-                report.R = toMat(model.R);
-                report.t = toMat(model.t);
-                if (model.uncertaintyDof == detail::MotionTangent::kDof)
-                    setMotionUncertainty(model.covariance.topLeftCorner<5, 5>(), report);
-            }
-        } else {
-            report.F = toMat(model.F);
-        }
-        if (report.status == STATUS_SUCCESS)
-            report.noiseSigma = model.noiseSigma;
+        setEstimate(report, result.model);
     } else if (result.status == STATUS_PURE_ROTATION) {
         // R only: the translation is not determined, reported as zero; F and E stay empty.
         report.R = toMat(result.model.R);
         report.t = Mat::zeros(3, 1, CV_64F);
         if (result.model.uncertaintyDof == 3)
             report.covariance = toMat(result.model.covariance.topLeftCorner<3, 3>());
-        out.inFront = out.mask;
     }
     if (result.status != STATUS_SUCCESS && result.hasRejected)
-        setRejected(report, result.rejected, data.calibrated);
+        setRejected(report, result.rejected);
     report.iterations = result.iterations;
     report.pointsPerHypothesis = result.pointsPerHypothesis;
     report.meanEntropy = result.score.meanEntropy;
     report.rivalCostGap = result.rivalCostGap;
-    if (report.status != STATUS_SUCCESS && report.status != STATUS_PURE_ROTATION)
-        out.inFront.assign(out.mask.size(), 0);
     report.inlierCount = static_cast<int>(std::count(out.mask.begin(), out.mask.end(), 1));
     report.mask = Mat(static_cast<int>(out.mask.size()), 1, CV_8U, out.mask.data()).clone();
     report.timeSeconds = static_cast<double>(getTickCount() - start) / getTickFrequency();

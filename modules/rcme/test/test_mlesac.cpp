@@ -10,6 +10,7 @@
 #ifdef RCME_STANDALONE_TESTS
 
 #include "framework/component_factories.hpp"
+#include "framework/model_space.hpp"
 #include "framework/ransac_loop.hpp"
 #include "geometry/epipolar.hpp"
 #include "test_internal_helpers.hpp"
@@ -200,6 +201,7 @@ TEST(Rcme_Mlesac, runs_in_the_ransac_loop)
         const SyntheticScene scene = mlesacScene(ratio, 5);
         const TwoViewData data = sceneData(scene, false, /*inliersOnly=*/false);
         EstimatorComponents c;
+        c.space = createFundamentalSpace();
         c.solver = createEightPointSolver(false);
         c.sampler = createUniformSampler(data.size(), 8, 0);
         c.termination = createAdaptiveTermination(params.confidence, params.maxIterations, 8);

@@ -9,6 +9,7 @@
 #include "components/residual_uncertainty.hpp"
 #include "estimation/model_fit.hpp"
 #include "framework/component_factories.hpp"
+#include "framework/model_space.hpp"
 #include "geometry/epipolar.hpp"
 #include "geometry/motion_parameterization.hpp"
 #include "test_internal_helpers.hpp"
@@ -211,8 +212,8 @@ TEST(Rcme_Boxes, consistency_test_rejects_contaminated_samples)
         for (int i = 0; i < s.inlierMask.rows; ++i)
             (s.inlierMask.at<uchar>(i) ? inlierIdx : outlierIdx).push_back(i);
         const Params params = rcmeParams(seed);
-        auto solver = createUncertainModelInstantiation(createEightPointSolver(true),
-                                                        params.sampleFitIterations);
+        auto solver = createUncertainModelInstantiation(
+            createEightPointSolver(true), createMotionSpace(), params.sampleFitIterations);
         TwoViewData stated = data; // the test at the paper's sigma = 1, not the scene's 0.5
         stated.sigma = 1.0;
         auto test = createModelSampleConsistencyTest(stated, params.sampleLeverage);

@@ -13,7 +13,8 @@
 // not larger.
 
 #include "components/homography_comparison.hpp"
-#include "framework/components.hpp"
+#include "framework/model_space.hpp"
+#include "framework/ransac_loop.hpp"
 #include "geometry/epipolar.hpp"
 #include "geometry/motion_parameterization.hpp"
 #include "geometry/statistics.hpp"
@@ -319,6 +320,29 @@ std::vector<Model> homographyMotions(const TwoViewData& data, const Eigen::Matri
         motions.push_back(m);
     }
     return motions;
+}
+
+namespace {
+
+// The post-loop test of Params::degeneracyTest: the comparison above, and what the model space
+// leaves determined when the homography wins.
+class HomographyDegeneracyTest : public EstimateTest
+{
+public:
+    void apply(const TwoViewData& data, EstimatorComponents& c, RansacResult& result) override
+    {
+        const HomographyComparison homography =
+            compareWithHomography(data, result.model.F, result.mask);
+        if (homography.homographyExplainsInliers)
+            c.space->resolveHomography(data, c, homography.H, result);
+    }
+};
+
+} // namespace
+
+std::unique_ptr<EstimateTest> createHomographyDegeneracyTest()
+{
+    return std::make_unique<HomographyDegeneracyTest>();
 }
 
 } // namespace detail

@@ -5,8 +5,8 @@
 #define OPENCV_RCME_COMPONENTS_HOMOGRAPHY_COMPARISON_HPP
 
 // The post-loop comparison of the final inliers with a homography and a rotation
-// (components/homography_comparison.cpp), and the motions of a homography; used by
-// decideDegeneracy (framework/ransac_loop.cpp).
+// (components/homography_comparison.cpp), and the motions of a homography; used by the
+// degeneracy test there and by the motion space (framework/motion_space.cpp).
 
 #include "framework/model.hpp"
 

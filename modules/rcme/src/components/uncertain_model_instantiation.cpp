@@ -11,6 +11,7 @@
 
 #include "estimation/model_fit.hpp"
 #include "framework/component_factories.hpp"
+#include "framework/model_space.hpp"
 #include "geometry/epipolar.hpp"
 
 namespace cv {
@@ -22,8 +23,9 @@ namespace {
 class UncertainModelInstantiation final : public MinimalSolver
 {
 public:
-    UncertainModelInstantiation(std::unique_ptr<MinimalSolver> solver, int fitIterations)
-        : solver_(std::move(solver)), fitIterations_(fitIterations)
+    UncertainModelInstantiation(std::unique_ptr<MinimalSolver> solver,
+                                std::shared_ptr<const ModelSpace> space, int fitIterations)
+        : solver_(std::move(solver)), space_(std::move(space)), fitIterations_(fitIterations)
     {
     }
 
@@ -32,7 +34,8 @@ public:
     bool isOverParameterized() const override { return solver_->isOverParameterized(); }
     std::unique_ptr<MinimalSolver> clone() const override
     {
-        return std::make_unique<UncertainModelInstantiation>(solver_->clone(), fitIterations_);
+        return std::make_unique<UncertainModelInstantiation>(solver_->clone(), space_,
+                                                             fitIterations_);
     }
 
     int estimate(const TwoViewData& data, const std::vector<int>& sample,
@@ -41,7 +44,8 @@ public:
         solver_->estimate(data, sample, models);
         size_t kept = 0;
         for (Model& model : models) {
-            if (data.calibrated && !model.hasMotion && !motionFromSample(data, sample, model))
+            // Cheirality decided by the sample alone: the hypothesis knows nothing else.
+            if (!space_->liftHypothesis(data, sample, model, samplePoints1_, samplePoints2_))
                 continue;
             if (!fitModelOn(data, sample, fitIterations_, model) || model.uncertaintyDof == 0)
                 continue;
@@ -52,13 +56,8 @@ public:
     }
 
 private:
-    // Cheirality decided by the sample alone: the hypothesis knows nothing else.
-    bool motionFromSample(const TwoViewData& data, const std::vector<int>& sample, Model& model)
-    {
-        return recoverMotionFromSample(data, sample, model, samplePoints1_, samplePoints2_);
-    }
-
     std::unique_ptr<MinimalSolver> solver_;
+    std::shared_ptr<const ModelSpace> space_;
     int fitIterations_;
     std::vector<Eigen::Vector2d> samplePoints1_, samplePoints2_;
 };
@@ -66,9 +65,11 @@ private:
 } // namespace
 
 std::unique_ptr<MinimalSolver>
-createUncertainModelInstantiation(std::unique_ptr<MinimalSolver> solver, int fitIterations)
+createUncertainModelInstantiation(std::unique_ptr<MinimalSolver> solver,
+                                  std::shared_ptr<const ModelSpace> space, int fitIterations)
 {
-    return std::make_unique<UncertainModelInstantiation>(std::move(solver), fitIterations);
+    return std::make_unique<UncertainModelInstantiation>(std::move(solver), std::move(space),
+                                                         fitIterations);
 }
 
 } // namespace detail

@@ -52,8 +52,11 @@ std::unique_ptr<Scorer> createCovarianceInlierScorer(const TwoViewData& data, in
                                                      int maxIterations);
 
 // RCME's boxes (doc/algorithm.md).
+//! Each hypothesis of `solver` in `space` (a motion by its sample's cheirality, with K) and
+//! fitted to its sample with its uncertainty.
 std::unique_ptr<MinimalSolver>
-createUncertainModelInstantiation(std::unique_ptr<MinimalSolver> solver, int fitIterations);
+createUncertainModelInstantiation(std::unique_ptr<MinimalSolver> solver,
+                                  std::shared_ptr<const ModelSpace> space, int fitIterations);
 //! Box 4 of Fig. 1(b): the sample's points against the hypothesis' propagated uncertainty.
 std::unique_ptr<ModelVerifier> createModelSampleConsistencyTest(const TwoViewData& data,
                                                                 bool leverage);
@@ -71,6 +74,15 @@ std::unique_ptr<Scorer> createEntropyScorer(const TwoViewData& data, const Entro
 //! Stops once the best candidate's mean entropy is at most entropyBound (> 0), else as `bound`.
 std::unique_ptr<Termination> createEntropyTermination(std::unique_ptr<Termination> bound,
                                                       double entropyBound);
+
+// The tests after the loop (EstimateTest).
+//! Params::degeneracyTest: a homography against the final inliers (homography_comparison.cpp).
+std::unique_ptr<EstimateTest> createHomographyDegeneracyTest();
+//! Params::ambiguityMargin (> 0), calibrated data; needs EstimatorComponents::tracksRivals.
+std::unique_ptr<EstimateTest> createAmbiguityTest(double margin);
+//! Params::maxRotationStdDeg, maxTranslationStdDeg (each <= 0: off), calibrated data.
+std::unique_ptr<EstimateTest> createUncertaintyTest(double maxRotationStdDeg,
+                                                    double maxTranslationStdDeg);
 
 } // namespace detail
 } // namespace rcme

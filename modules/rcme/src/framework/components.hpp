@@ -126,6 +126,21 @@ public:
     virtual void finalize(const TwoViewData& data, std::vector<uchar>& inliers, Model& model) = 0;
 };
 
+struct EstimatorComponents;
+struct RansacResult;
+class ModelSpace;
+
+/** A test of a successful estimate after the loop (the kind of OpenCV USAC's Degeneracy): what
+the data determine of it. It may keep the estimate, replace it with a better-supported one, or
+turn the result into a failure whose status says what is not determined (rejectModel). */
+class EstimateTest
+{
+public:
+    virtual ~EstimateTest() = default;
+    virtual void apply(const TwoViewData& data, EstimatorComponents& components,
+                       RansacResult& result) = 0;
+};
+
 //! A method: one component of each kind.
 struct EstimatorComponents
 {
@@ -151,9 +166,18 @@ struct EstimatorComponents
     bool parallel = false;
     //! cv::getTickCount() value at which the hypothesis loop stops (Params::timeBudget); 0: none.
     int64 deadline = 0;
-    //! The final tests of a motion (calibrated data only; <= 0: off): Params::ambiguityMargin,
-    //! Params::maxRotationStdDeg and Params::maxTranslationStdDeg.
-    double ambiguityMargin = 0, maxRotationStdDeg = 0, maxTranslationStdDeg = 0;
+    //! What an estimate is: F, or with K the motion (framework/model_space.hpp). Shared, as the
+    //! components that lift hypotheses hold it too.
+    std::shared_ptr<const ModelSpace> space;
+    //! The test of what the final inliers determine, before the final fit (a homography
+    //! explaining them: Params::degeneracyTest); null when off.
+    std::unique_ptr<EstimateTest> degeneracy;
+    //! The tests of the final estimate, after its final fit, in order (the ambiguity test, the
+    //! uncertainty test); empty when none applies.
+    std::vector<std::unique_ptr<EstimateTest>> finalTests;
+    //! The loop remembers the distinct motions among its candidates (RivalMotions), for the
+    //! ambiguity test.
+    bool tracksRivals = false;
 };
 
 /** The inlier count that chance alone exceeds with probability at most 5 % over a whole run: a

@@ -7,6 +7,7 @@
 #include "framework/estimator_factory.hpp"
 
 #include "framework/component_factories.hpp"
+#include "framework/model_space.hpp"
 
 #include <numeric>
 
@@ -59,6 +60,7 @@ constexpr int kInnerSamplesPerRound = 100;
 EstimatorComponents createEstimator(const Params& params, const TwoViewData& data)
 {
     EstimatorComponents c;
+    c.space = data.calibrated ? createMotionSpace() : createFundamentalSpace();
     const bool uncertain = params.method == METHOD_RCME || params.method == METHOD_PRCME ||
                            params.method == METHOD_COV_RANSAC;
     // The methods that propagate uncertainty need a motion per hypothesis when K is known (its
@@ -81,8 +83,8 @@ EstimatorComponents createEstimator(const Params& params, const TwoViewData& dat
         c.solver = createEightPointSolver(/*essentialHypotheses=*/uncertain);
     }
     if (uncertain)
-        c.solver =
-            createUncertainModelInstantiation(std::move(c.solver), params.sampleFitIterations);
+        c.solver = createUncertainModelInstantiation(std::move(c.solver), c.space,
+                                                     params.sampleFitIterations);
     const int m = c.solver->sampleSize();
     if (data.size() >= m) {
         const uint64_t seed = static_cast<uint64_t>(params.randomGeneratorState);
@@ -135,9 +137,16 @@ EstimatorComponents createEstimator(const Params& params, const TwoViewData& dat
         c.innerSampling.seed = static_cast<uint64_t>(params.randomGeneratorState);
     }
     c.parallel = params.isParallel;
-    c.ambiguityMargin = params.ambiguityMargin;
-    c.maxRotationStdDeg = params.maxRotationStdDeg;
-    c.maxTranslationStdDeg = params.maxTranslationStdDeg;
+    if (params.degeneracyTest)
+        c.degeneracy = createHomographyDegeneracyTest();
+    // The final tests weigh motions: F alone has no rotation or translation to bound.
+    if (data.calibrated && params.ambiguityMargin > 0) {
+        c.finalTests.push_back(createAmbiguityTest(params.ambiguityMargin));
+        c.tracksRivals = true;
+    }
+    if (data.calibrated && (params.maxRotationStdDeg > 0 || params.maxTranslationStdDeg > 0))
+        c.finalTests.push_back(
+            createUncertaintyTest(params.maxRotationStdDeg, params.maxTranslationStdDeg));
     return c;
 }
 

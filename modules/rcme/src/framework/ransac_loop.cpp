@@ -3,10 +3,10 @@
 
 #include "framework/ransac_loop.hpp"
 
-#include "components/homography_comparison.hpp"
 #include "components/random.hpp"
 #include "estimation/model_fit.hpp"
 #include "framework/candidate_set.hpp"
+#include "framework/model_space.hpp"
 #include "geometry/epipolar.hpp"
 #include "geometry/motion_parameterization.hpp"
 #include "geometry/statistics.hpp"
@@ -15,14 +15,8 @@ namespace cv {
 namespace rcme {
 namespace detail {
 
-namespace {
-
-const char* const kNoCheirality = "no decomposition of E puts the inliers in front of both cameras";
-
-// Refines the selected model on its inliers and classifies again, until the inlier set stops
-// changing (a refined model usually gathers inliers its minimal sample missed). A refinement is
-// kept only if the scorer keeps it (Scorer::keepsRefinement), so a diverging refinement cannot
-// spoil a good estimate.
+// A refined model usually gathers inliers its minimal sample missed; a refinement the scorer does
+// not keep ends the rounds, so a diverging refinement cannot spoil a good estimate.
 void refineSelected(const TwoViewData& data, EstimatorComponents& c, RansacResult& result)
 {
     constexpr int kMaxRounds = 10;
@@ -44,29 +38,7 @@ void refineSelected(const TwoViewData& data, EstimatorComponents& c, RansacResul
     }
 }
 
-// Which of E's decompositions is the motion is decided by cheirality on all the final inliers:
-// a hypothesis decided it on its minimal sample alone, and refinement cannot change it (E and -E
-// are the same geometry). When the decision changes the motion, its uncertainty is recomputed
-// at the new one from the same inliers.
-bool decideMotionOnInliers(const TwoViewData& data, EstimatorComponents& c, RansacResult& result)
-{
-    Model& model = result.model;
-    const Eigen::Matrix3d R = model.R;
-    const Eigen::Vector3d t = model.t;
-    if (!recoverMotion(data, result.mask, model))
-        return false;
-    if ((model.R - R).norm() < 1e-9 && (model.t - t).norm() < 1e-9)
-        return true;
-    if (model.uncertaintyDof > 0) {
-        std::vector<int> inliers;
-        for (size_t i = 0; i < result.mask.size(); ++i)
-            if (result.mask[i])
-                inliers.push_back(static_cast<int>(i));
-        fitModelOn(data, inliers, 0, model);
-    }
-    result.score = c.scorer->score(data, model);
-    return true;
-}
+namespace {
 
 // LO-RANSAC's step: a new candidate refitted on its own inliers competes as a candidate too (a
 // minimal sample's hypothesis is noisy; its refit usually gathers more inliers, and the same
@@ -92,7 +64,7 @@ Model polishRejected(const TwoViewData& data, EstimatorComponents& c, Model mode
     constexpr int kFitIterations = 20;
     std::vector<uchar> mask;
     c.scorer->classify(data, model, mask);
-    if (data.calibrated && !model.hasMotion && !recoverMotion(data, mask, model))
+    if (!c.space->liftOn(data, mask, model, /*redecide=*/false))
         return model;
     std::vector<int> inliers;
     for (size_t i = 0; i < mask.size(); ++i)
@@ -101,8 +73,7 @@ Model polishRejected(const TwoViewData& data, EstimatorComponents& c, Model mode
     Model fitted = model;
     if (fitModelOn(data, inliers, kFitIterations, fitted))
         model = fitted;
-    if (data.calibrated)
-        recoverMotion(data, mask, model);
+    c.space->liftOn(data, mask, model, /*redecide=*/true);
     return model;
 }
 
@@ -180,7 +151,7 @@ public:
             localInliers_.assign(static_cast<size_t>(data.size()), 0);
         if (c.innerSampling.samplesPerRound > 0)
             innerPool_.reserve(static_cast<size_t>(data.size()));
-        if (c.ambiguityMargin > 0 && data.calibrated)
+        if (c.tracksRivals)
             rivals_ = std::make_unique<RivalMotions>(kRivalCapacity);
         const size_t solutions = static_cast<size_t>(c.solver->maxSolutions());
         slots_.resize(static_cast<size_t>(batch_));
@@ -401,242 +372,6 @@ void rejectModel(RansacResult& result, Status status, const std::string& message
     std::fill(result.mask.begin(), result.mask.end(), 0);
 }
 
-namespace {
-
-// ORB-SLAM's ambiguity ratio (Mur-Artal et al. 2015, homography reconstruction): a second
-// motion with at least this share of the best one's support is not ruled out by cheirality.
-constexpr double kAmbiguousSupportRatio = 0.75;
-// ... and whose cost (planarFit, in sigma^2) is within this of the best one's: twice a
-// log-likelihood ratio of 10 is odds of about 150:1. The two motions of a homography's
-// decomposition fit a plane's points about equally; a 5-point E refitted on a plane can stop in a
-// shallow basin nearby (16 deg of translation away, 40 sigma^2 worse, on a test's scene), which
-// support alone did not tell from a real ambiguity.
-constexpr double kAmbiguousCostGap = 10.0;
-
-// Points within the threshold of the model's F (`within`); how many of them lie in front of both
-// cameras (support); and the truncated cost of MSAC with cheirality: a point's squared Sampson
-// distance, the squared threshold for a point outside the band or behind a camera.
-struct PlanarFit
-{
-    int support = -1;
-    double cost = std::numeric_limits<double>::infinity();
-};
-
-PlanarFit planarFit(const TwoViewData& data, const Model& model, std::vector<uchar>& within,
-                    std::vector<uchar>& inFront)
-{
-    const double thresholdSquared = data.threshold * data.threshold;
-    within.resize(data.points1.size());
-    for (size_t i = 0; i < within.size(); ++i)
-        within[i] =
-            sampsonDistanceSquared(model.F, data.points1[i], data.points2[i]) <= thresholdSquared;
-    PlanarFit fit;
-    fit.support = countPointsInFront(model.R, model.t, data.points1, data.points2, data.Kinv,
-                                     &within, &inFront);
-    fit.cost = 0.0;
-    for (size_t i = 0; i < within.size(); ++i)
-        fit.cost += inFront[i] ? sampsonDistanceSquared(model.F, data.points1[i], data.points2[i])
-                               : thresholdSquared;
-    return fit;
-}
-
-// MSAC's cost of F: each point's squared Sampson distance, at most the squared threshold.
-double truncatedCost(const TwoViewData& data, const Eigen::Matrix3d& F)
-{
-    const double thresholdSquared = data.threshold * data.threshold;
-    double cost = 0.0;
-    for (size_t i = 0; i < data.points1.size(); ++i)
-        cost +=
-            std::min(thresholdSquared, sampsonDistanceSquared(F, data.points1[i], data.points2[i]));
-    return cost;
-}
-
-/* Refits a motion on the points within its own band, twice, and returns its fit (support:
-those in front of both cameras). Not on the selected model's inliers: those pull every
-other motion towards the selected one (on a plane the selected F is one of a family). */
-PlanarFit refitOnOwnPoints(const TwoViewData& data, Model& motion)
-{
-    constexpr int kFitIterations = 20, kRounds = 2;
-    std::vector<uchar> within, inFront;
-    std::vector<int> inliers;
-    for (int round = 0; round < kRounds; ++round) {
-        planarFit(data, motion, within, inFront);
-        inliers.clear();
-        for (size_t i = 0; i < within.size(); ++i)
-            if (within[i])
-                inliers.push_back(static_cast<int>(i));
-        Model fitted = motion;
-        if (fitModelOn(data, inliers, kFitIterations, fitted))
-            motion = fitted;
-    }
-    return planarFit(data, motion, within, inFront);
-}
-
-void resolvePlanarMotion(const TwoViewData& data, EstimatorComponents& c, const Eigen::Matrix3d& H,
-                         RansacResult& result)
-{
-    std::vector<Model> motions = homographyMotions(data, H);
-    motions.insert(motions.begin(), result.model);
-    std::vector<PlanarFit> fits(motions.size());
-    size_t best = 0;
-    for (size_t m = 0; m < motions.size(); ++m) {
-        fits[m] = refitOnOwnPoints(data, motions[m]);
-        if (fits[m].cost < fits[best].cost)
-            best = m;
-    }
-    const double sigmaSquared = data.sigma * data.sigma;
-    for (size_t m = 0; m < motions.size(); ++m) {
-        const bool distinct = areDistinctMotions(motions[m], motions[best]);
-        if (distinct && fits[m].support >= kAmbiguousSupportRatio * fits[best].support &&
-            fits[m].cost - fits[best].cost < kAmbiguousCostGap * sigmaSquared) {
-            rejectModel(result, STATUS_DEGENERATE_CONFIGURATION,
-                        "a homography explains the inliers (planar scene) and two of its motions "
-                        "put them in front of both cameras: the motion is not determined",
-                        motions[best]);
-            return;
-        }
-    }
-    result.planar = true;
-    result.model = motions[best];
-    c.scorer->classify(data, result.model, result.mask);
-    result.score = c.scorer->score(data, result.model);
-    if (!result.score.isCandidate || fits[best].support <= 0)
-        rejectModel(result, STATUS_POOR_QUALITY_INPUT,
-                    "the motion of the planar scene fails the acceptance tests", result.model);
-}
-
-} // namespace
-
-void decideDegeneracy(const TwoViewData& data, EstimatorComponents& c, RansacResult& result)
-{
-    if (result.status != STATUS_SUCCESS)
-        return;
-    const HomographyComparison homography =
-        compareWithHomography(data, result.model.F, result.mask);
-    if (!homography.homographyExplainsInliers)
-        return;
-    if (!data.calibrated) {
-        rejectModel(result, STATUS_DEGENERATE_CONFIGURATION,
-                    "a homography explains the inliers as well as F (planar scene, pure rotation "
-                    "or too little parallax): F is not determined without the camera matrix",
-                    result.model);
-        return;
-    }
-    const RotationComparison rotation = compareWithRotation(data, result.model.F, result.mask);
-    if (rotation.rotationExplainsInliers) {
-        result.rejected = result.model;
-        result.hasRejected = true;
-        Model pure;
-        pure.hasMotion = true;
-        pure.R = rotation.R;
-        pure.t.setZero();
-        if (rotation.hasCovariance) {
-            pure.uncertaintyDof = 3;
-            pure.covariance.topLeftCorner<3, 3>() = rotation.covariance;
-        }
-        result.model = pure;
-        result.mask = rotation.inliers;
-        result.status = STATUS_PURE_ROTATION;
-        result.message = "a rotation about the camera centre explains the inliers as well as a "
-                         "motion: R is determined, the translation is not";
-        return;
-    }
-    resolvePlanarMotion(data, c, homography.H, result);
-}
-
-void resolveRivalMotions(const TwoViewData& data, EstimatorComponents& c, RansacResult& result)
-{
-    constexpr double kSupportShare = 0.5; // as RivalMotions' gate
-    if (c.ambiguityMargin <= 0 || !data.calibrated || result.status != STATUS_SUCCESS ||
-        !result.model.hasMotion || result.planar)
-        return;
-    // The cost is MSAC's, without the planar test's cheirality term: the depth sign of far
-    // points flips with the noise, and counting them as outliers handed small-baseline corridors
-    // to mirrored rivals. The four motions of one E share that cost, so a refitted rival's
-    // decomposition is chosen again by cheirality on all the points of its band, as the selected
-    // model's was: a rival whose sample's few points chose -t (forward motion, far points: on
-    // KITTI every rival within the margin was the selected motion with t reversed) is then the
-    // selected motion again, not an ambiguity.
-    // A rival's refit and its decomposition on a subset of a large problem; costs on every point.
-    const TwoViewData subset = data.size() > static_cast<int>(kMaxIteratedPoints)
-                                   ? evenlySpacedSubset(data, kMaxIteratedPoints)
-                                   : TwoViewData();
-    const TwoViewData& fitData = subset.points1.empty() ? data : subset;
-    std::vector<Model> motions{result.model};
-    std::vector<double> costs{truncatedCost(data, result.model.F)};
-    std::vector<uchar> within, inFront;
-    for (const RivalMotions::Rival& rival : result.rivals) {
-        if (rival.score.inlierCount < kSupportShare * result.score.inlierCount ||
-            !areDistinctMotions(rival.model, result.model))
-            continue;
-        Model refitted = rival.model;
-        if (refitOnOwnPoints(fitData, refitted).support <= 0)
-            continue;
-        planarFit(fitData, refitted, within, inFront);
-        if (recoverMotion(fitData, within, refitted) &&
-            areDistinctMotions(refitted, result.model)) {
-            motions.push_back(refitted);
-            costs.push_back(truncatedCost(data, refitted.F));
-        }
-    }
-    size_t best = 0;
-    for (size_t m = 1; m < motions.size(); ++m)
-        if (costs[m] < costs[best])
-            best = m;
-    if (best != 0) {
-        // A rival explains the data better than the loop's choice: it becomes the estimate.
-        Model chosen = motions[best];
-        std::vector<uchar> mask;
-        c.scorer->classify(data, chosen, mask);
-        const Score score = c.scorer->score(data, chosen);
-        if (score.isCandidate) {
-            result.model = chosen;
-            result.mask = mask;
-            result.score = score;
-            finalizeModel(data, c, result);
-            costs[best] = truncatedCost(data, result.model.F);
-        } else {
-            best = 0;
-        }
-    }
-    double gap = std::numeric_limits<double>::infinity();
-    for (size_t m = 0; m < motions.size(); ++m)
-        if (m != best && areDistinctMotions(motions[m], motions[best]))
-            gap = std::min(gap, (costs[m] - costs[best]) / (data.sigma * data.sigma));
-    result.rivalCostGap = std::max(0.0, gap);
-    if (result.rivalCostGap < c.ambiguityMargin)
-        rejectModel(result, STATUS_UNDETERMINED_MOTION,
-                    cv::format("a distinct motion explains the inliers about as well (cost gap "
-                               "%.1f sigma^2 < Params.ambiguityMargin %.1f): the motion is not "
-                               "determined",
-                               result.rivalCostGap, c.ambiguityMargin),
-                    result.model);
-}
-
-void checkMotionUncertainty(const TwoViewData& data, const EstimatorComponents& c,
-                            RansacResult& result)
-{
-    const Model& model = result.model;
-    if (!data.calibrated || result.status != STATUS_SUCCESS ||
-        model.uncertaintyDof != MotionTangent::kDof)
-        return;
-    const Eigen::Matrix<double, 5, 5> covariance = model.covariance.topLeftCorner<5, 5>();
-    const double rotationStd = rotationStdDeg(covariance).maxCoeff();
-    const double translationStd = translationDirectionStdDeg(covariance);
-    if (c.maxRotationStdDeg > 0 && rotationStd > c.maxRotationStdDeg)
-        rejectModel(result, STATUS_UNDETERMINED_MOTION,
-                    cv::format("the rotation's standard deviation %.2f deg exceeds "
-                               "Params.maxRotationStdDeg %.2f: the motion is not determined",
-                               rotationStd, c.maxRotationStdDeg),
-                    model);
-    else if (c.maxTranslationStdDeg > 0 && translationStd > c.maxTranslationStdDeg)
-        rejectModel(result, STATUS_UNDETERMINED_MOTION,
-                    cv::format("the translation direction's standard deviation %.2f deg exceeds "
-                               "Params.maxTranslationStdDeg %.2f: the motion is not determined",
-                               translationStd, c.maxTranslationStdDeg),
-                    model);
-}
-
 void searchHypotheses(const TwoViewData& data, EstimatorComponents& components,
                       CandidateSet& candidates, RansacResult& result)
 {
@@ -681,26 +416,8 @@ RansacResult runRansac(const TwoViewData& data, EstimatorComponents& c)
 
     c.scorer->classify(data, result.model, result.mask);
     refineSelected(data, c, result);
-    if (data.calibrated && !result.model.hasMotion) {
-        // The (refined) F becomes a motion: the closest essential matrix, decomposed with
-        // cheirality, then refined in motion space. Refining F first matters: the F of a noisy
-        // minimal sample is far from any essential matrix.
-        if (!recoverMotion(data, result.mask, result.model)) {
-            rejectModel(result, STATUS_DEGENERATE_CONFIGURATION, kNoCheirality, result.model);
-            return result;
-        }
-        // The motion's maximum-likelihood fit on the F's inliers comes before classifying
-        // again: the bare projection can lose most of them.
-        if (c.refiner)
-            c.refiner->refine(data, result.mask, result.model);
-        result.score = c.scorer->score(data, result.model);
-        c.scorer->classify(data, result.model, result.mask);
-        refineSelected(data, c, result);
-    }
-    if (data.calibrated && !decideMotionOnInliers(data, c, result)) {
-        rejectModel(result, STATUS_DEGENERATE_CONFIGURATION, kNoCheirality, result.model);
+    if (!c.space->settleSelected(data, c, result))
         return result;
-    }
     if (!result.score.isCandidate) {
         rejectModel(result, STATUS_POOR_QUALITY_INPUT,
                     "the motion closest to the selected hypothesis fails the acceptance tests",
@@ -708,6 +425,19 @@ RansacResult runRansac(const TwoViewData& data, EstimatorComponents& c)
         return result;
     }
     result.status = STATUS_SUCCESS;
+    return result;
+}
+
+RansacResult estimateModel(const TwoViewData& data, EstimatorComponents& c)
+{
+    RansacResult result = runRansac(data, c);
+    if (c.degeneracy && result.status == STATUS_SUCCESS)
+        c.degeneracy->apply(data, c, result);
+    finalizeModel(data, c, result);
+    for (const std::unique_ptr<EstimateTest>& test : c.finalTests)
+        if (result.status == STATUS_SUCCESS)
+            test->apply(data, c, result);
+    c.space->finish(data, result);
     return result;
 }
 

@@ -22,6 +22,9 @@ struct RansacResult
     Model model;             //!< valid only on success
     Score score;             //!< of the returned model
     std::vector<uchar> mask; //!< inliers of the returned model, always data.size()
+    //! With K: the inliers in front of both cameras (recoverPose's mask), set by
+    //! ModelSpace::finish; empty otherwise.
+    std::vector<uchar> inFront;
     int iterations = 0;
     int degenerateSamples = 0;
     bool outOfTime = false;   //!< the loop stopped at EstimatorComponents::deadline
@@ -37,9 +40,10 @@ struct RansacResult
     //! test that failed, for diagnostics (Report::rejectedF, rejectedR, rejectedT).
     bool hasRejected = false;
     Model rejected;
-    //! The motion is a planar scene's (decideDegeneracy): Sampson costs do not tell its rivals.
+    //! The motion is a planar scene's (ModelSpace::resolveHomography): Sampson costs do not tell
+    //! its rivals.
     bool planar = false;
-    //! The distinct motions among the candidates (with components.ambiguityMargin > 0 and K).
+    //! The distinct motions among the candidates (with components.tracksRivals).
     std::vector<RivalMotions::Rival> rivals;
     /** The ambiguity test's measure: (C_rival - C) / sigma^2, C the truncated cost (MSAC, a
     point behind a camera costing as an outlier) of the returned motion and C_rival that of the
@@ -53,44 +57,23 @@ void rejectModel(RansacResult& result, Status status, const std::string& message
                  const Model& model);
 
 /** The RANSAC loop shared by every method: sample, instantiate, verify, score, keep the best
-candidate, adapt the iteration bound; then refine the selected model and classify the points.
-No hypothesis that is not a candidate is ever returned: with none, the status says why. */
+candidate, adapt the iteration bound; then refine the selected model, classify the points and
+settle the estimate in its model space (ModelSpace::settleSelected). No hypothesis that is not a
+candidate is ever returned: with none, the status says why. */
 RansacResult runRansac(const TwoViewData& data, EstimatorComponents& components);
 
-/** The final decision on a successful run whose inliers a homography explains as well as F
-(Params::degeneracyTest). Without K, F is not determined: #STATUS_DEGENERATE_CONFIGURATION.
-With K, a rotation that explains the inliers as well as the motion gives #STATUS_PURE_ROTATION
-(model.R, t zero, F and E zero, the rotation's 3x3 covariance as uncertaintyDof 3); otherwise
-the scene is planar (or nearly) and the motion is the one, among the selected motion and the
-homography's decompositions (cv::decomposeHomographyMat), each refitted on the points it
-explains, of least truncated cost (MSAC, a point behind a camera costing as an outlier); when a
-distinct motion comes within ORB-SLAM's 0.75 of its support (inliers in front of both cameras),
-cheirality cannot tell the two and the status is degenerate. The motion rejected by either
-outcome is result.rejected. */
-void decideDegeneracy(const TwoViewData& data, EstimatorComponents& components,
-                      RansacResult& result);
+/** One whole estimation, the paper's Fig. 1 and what follows it: runRansac, the degeneracy test
+(components.degeneracy), the final fit (finalizeModel), the final tests (components.finalTests)
+and the model space's last decision (ModelSpace::finish). */
+RansacResult estimateModel(const TwoViewData& data, EstimatorComponents& components);
 
-/** The ambiguity test (components.ambiguityMargin > 0, calibrated data, after finalizeModel; not
-on a planar scene's motion, see decideDegeneracy):
-each rival motion of the loop (result.rivals) with at least half the selected model's support
-and distinct from it is refitted on the points it explains itself; the motion of least truncated
-cost is kept (a rival can beat the selected one: the loop scores raw minimal-sample hypotheses;
-it is then finalized in its turn),
-and when a distinct one comes within the margin of it (result.rivalCostGap below
-ambiguityMargin) the data do not tell the two: #STATUS_UNDETERMINED_MOTION, the kept motion being
-result.rejected. */
-void resolveRivalMotions(const TwoViewData& data, EstimatorComponents& components,
-                         RansacResult& result);
-
-/** The uncertainty test, after finalizeModel: a motion whose propagated standard deviation of a
-rotation axis exceeds components.maxRotationStdDeg, or of the translation direction
-components.maxTranslationStdDeg, is not determined to the asked accuracy:
-#STATUS_UNDETERMINED_MOTION. Needs the final covariance (Params::refine). */
-void checkMotionUncertainty(const TwoViewData& data, const EstimatorComponents& components,
-                            RansacResult& result);
+/** Refines the selected model (result.model) on its inliers and classifies again, until the
+inlier set stops changing; a refinement the scorer does not keep (Scorer::keepsRefinement) ends
+it. */
+void refineSelected(const TwoViewData& data, EstimatorComponents& components, RansacResult& result);
 
 /** The final fit of a successful run's model and its covariance (Refiner::finalize), after the
-decision on what the inliers determine (decideDegeneracy): the model it fits is the one that is
+decision on what the inliers determine (components.degeneracy): the model it fits is the one that is
 returned. The mask becomes the points of that fit that the fitted model still holds. */
 void finalizeModel(const TwoViewData& data, EstimatorComponents& components, RansacResult& result);
 

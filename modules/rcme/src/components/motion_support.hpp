@@ -1,0 +1,46 @@
+// This file is part of the rcme module. It is subject to the license terms in the LICENSE file
+// found in the top-level directory of this distribution.
+
+#ifndef OPENCV_RCME_COMPONENTS_MOTION_SUPPORT_HPP
+#define OPENCV_RCME_COMPONENTS_MOTION_SUPPORT_HPP
+
+// How well a motion explains the points when cheirality counts: shared by the comparisons of
+// distinct motions after the loop (a planar scene's, framework/motion_space.cpp; the ambiguity
+// test's, components/ambiguity_test.cpp).
+
+#include "framework/model.hpp"
+
+#include <limits>
+#include <vector>
+
+namespace cv {
+namespace rcme {
+namespace detail {
+
+//! A motion's fit to the points.
+struct MotionSupport
+{
+    int support = -1; //!< points within the threshold and in front of both cameras
+    //! MSAC's cost with cheirality: a point's squared Sampson distance, the squared threshold for
+    //! a point outside the band or behind a camera.
+    double cost = std::numeric_limits<double>::infinity();
+};
+
+/** The fit of `model` (with its motion); `within` marks the points within the threshold of its
+F, `inFront` those of them in front of both cameras. */
+MotionSupport motionSupport(const TwoViewData& data, const Model& model, std::vector<uchar>& within,
+                            std::vector<uchar>& inFront);
+
+//! MSAC's cost of F: each point's squared Sampson distance, at most the squared threshold.
+double truncatedCost(const TwoViewData& data, const Eigen::Matrix3d& F);
+
+/** Refits a motion on the points within its own band, twice, and returns its fit. Not on the
+selected model's inliers: those pull every other motion towards the selected one (on a plane the
+selected F is one of a family). */
+MotionSupport refitOnOwnPoints(const TwoViewData& data, Model& motion);
+
+} // namespace detail
+} // namespace rcme
+} // namespace cv
+
+#endif // OPENCV_RCME_COMPONENTS_MOTION_SUPPORT_HPP

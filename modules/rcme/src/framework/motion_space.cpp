@@ -1,0 +1,189 @@
+// This file is part of the rcme module. It is subject to the license terms in the LICENSE file
+// found in the top-level directory of this distribution.
+
+// The model space of calibrated data: the estimate is a camera motion (R, t; 5 DoF). A hypothesis
+// becomes a motion through the decomposition of its essential matrix that puts the points in
+// front of both cameras; what a homography leaves determined is a rotation or a plane's motion.
+
+#include "framework/model_space.hpp"
+
+#include "components/homography_comparison.hpp"
+#include "components/motion_support.hpp"
+#include "estimation/model_fit.hpp"
+#include "framework/ransac_loop.hpp"
+#include "geometry/epipolar.hpp"
+
+namespace cv {
+namespace rcme {
+namespace detail {
+
+namespace {
+
+const char* const kNoCheirality = "no decomposition of E puts the inliers in front of both cameras";
+
+// ORB-SLAM's ambiguity ratio (Mur-Artal et al. 2015, homography reconstruction): a second
+// motion with at least this share of the best one's support is not ruled out by cheirality.
+constexpr double kAmbiguousSupportRatio = 0.75;
+// ... and whose cost (motionSupport, in sigma^2) is within this of the best one's: twice a
+// log-likelihood ratio of 10 is odds of about 150:1. The two motions of a homography's
+// decomposition fit a plane's points about equally; a 5-point E refitted on a plane can stop in a
+// shallow basin nearby (16 deg of translation away, 40 sigma^2 worse, on a test's scene), which
+// support alone did not tell from a real ambiguity.
+constexpr double kAmbiguousCostGap = 10.0;
+
+// Which of E's decompositions is the motion is decided by cheirality on all the final inliers:
+// a hypothesis decided it on its minimal sample alone, and refinement cannot change it (E and -E
+// are the same geometry). When the decision changes the motion, its uncertainty is recomputed
+// at the new one from the same inliers.
+bool decideMotionOnInliers(const TwoViewData& data, EstimatorComponents& c, RansacResult& result)
+{
+    Model& model = result.model;
+    const Eigen::Matrix3d R = model.R;
+    const Eigen::Vector3d t = model.t;
+    if (!recoverMotion(data, result.mask, model))
+        return false;
+    if ((model.R - R).norm() < 1e-9 && (model.t - t).norm() < 1e-9)
+        return true;
+    if (model.uncertaintyDof > 0) {
+        std::vector<int> inliers;
+        for (size_t i = 0; i < result.mask.size(); ++i)
+            if (result.mask[i])
+                inliers.push_back(static_cast<int>(i));
+        fitModelOn(data, inliers, 0, model);
+    }
+    result.score = c.scorer->score(data, model);
+    return true;
+}
+
+/* A planar scene's motion: among the selected motion and the homography's decompositions
+(cv::decomposeHomographyMat), each refitted on the points it explains, the one of least cost
+(motionSupport); when a distinct motion comes within ORB-SLAM's 0.75 of its support, cheirality
+cannot tell the two and the status is degenerate. */
+void resolvePlanarMotion(const TwoViewData& data, EstimatorComponents& c, const Eigen::Matrix3d& H,
+                         RansacResult& result)
+{
+    std::vector<Model> motions = homographyMotions(data, H);
+    motions.insert(motions.begin(), result.model);
+    std::vector<MotionSupport> fits(motions.size());
+    size_t best = 0;
+    for (size_t m = 0; m < motions.size(); ++m) {
+        fits[m] = refitOnOwnPoints(data, motions[m]);
+        if (fits[m].cost < fits[best].cost)
+            best = m;
+    }
+    const double sigmaSquared = data.sigma * data.sigma;
+    for (size_t m = 0; m < motions.size(); ++m) {
+        const bool distinct = areDistinctMotions(motions[m], motions[best]);
+        if (distinct && fits[m].support >= kAmbiguousSupportRatio * fits[best].support &&
+            fits[m].cost - fits[best].cost < kAmbiguousCostGap * sigmaSquared) {
+            rejectModel(result, STATUS_DEGENERATE_CONFIGURATION,
+                        "a homography explains the inliers (planar scene) and two of its motions "
+                        "put them in front of both cameras: the motion is not determined",
+                        motions[best]);
+            return;
+        }
+    }
+    result.planar = true;
+    result.model = motions[best];
+    c.scorer->classify(data, result.model, result.mask);
+    result.score = c.scorer->score(data, result.model);
+    if (!result.score.isCandidate || fits[best].support <= 0)
+        rejectModel(result, STATUS_POOR_QUALITY_INPUT,
+                    "the motion of the planar scene fails the acceptance tests", result.model);
+}
+
+class MotionSpace : public ModelSpace
+{
+public:
+    bool liftHypothesis(const TwoViewData& data, const std::vector<int>& sample, Model& model,
+                        std::vector<Eigen::Vector2d>& points1,
+                        std::vector<Eigen::Vector2d>& points2) const override
+    {
+        return model.hasMotion || recoverMotionFromSample(data, sample, model, points1, points2);
+    }
+
+    bool liftOn(const TwoViewData& data, const std::vector<uchar>& inliers, Model& model,
+                bool redecide) const override
+    {
+        return (model.hasMotion && !redecide) || recoverMotion(data, inliers, model);
+    }
+
+    bool settleSelected(const TwoViewData& data, EstimatorComponents& c,
+                        RansacResult& result) const override
+    {
+        if (!result.model.hasMotion) {
+            // The (refined) F becomes a motion: the closest essential matrix, decomposed with
+            // cheirality, then refined in motion space. Refining F first matters: the F of a
+            // noisy minimal sample is far from any essential matrix.
+            if (!recoverMotion(data, result.mask, result.model)) {
+                rejectModel(result, STATUS_DEGENERATE_CONFIGURATION, kNoCheirality, result.model);
+                return false;
+            }
+            // The motion's maximum-likelihood fit on the F's inliers comes before classifying
+            // again: the bare projection can lose most of them.
+            if (c.refiner)
+                c.refiner->refine(data, result.mask, result.model);
+            result.score = c.scorer->score(data, result.model);
+            c.scorer->classify(data, result.model, result.mask);
+            refineSelected(data, c, result);
+        }
+        if (!decideMotionOnInliers(data, c, result)) {
+            rejectModel(result, STATUS_DEGENERATE_CONFIGURATION, kNoCheirality, result.model);
+            return false;
+        }
+        return true;
+    }
+
+    // A rotation that explains the inliers as well as the motion gives STATUS_PURE_ROTATION
+    // (model.R, t zero, the rotation's 3x3 covariance as uncertaintyDof 3); otherwise the scene is
+    // planar (or nearly) and its motion is resolvePlanarMotion's.
+    void resolveHomography(const TwoViewData& data, EstimatorComponents& c,
+                           const Eigen::Matrix3d& H, RansacResult& result) const override
+    {
+        const RotationComparison rotation = compareWithRotation(data, result.model.F, result.mask);
+        if (!rotation.rotationExplainsInliers) {
+            resolvePlanarMotion(data, c, H, result);
+            return;
+        }
+        result.rejected = result.model;
+        result.hasRejected = true;
+        Model pure;
+        pure.hasMotion = true;
+        pure.R = rotation.R;
+        pure.t.setZero();
+        if (rotation.hasCovariance) {
+            pure.uncertaintyDof = 3;
+            pure.covariance.topLeftCorner<3, 3>() = rotation.covariance;
+        }
+        result.model = pure;
+        result.mask = rotation.inliers;
+        result.status = STATUS_PURE_ROTATION;
+        result.message = "a rotation about the camera centre explains the inliers as well as a "
+                         "motion: R is determined, the translation is not";
+    }
+
+    // The final fit moved the motion: the inliers it leaves in front of both cameras are
+    // recoverPose's mask, and a motion that leaves none is no motion of these points.
+    void finish(const TwoViewData& data, RansacResult& result) const override
+    {
+        if (result.status == STATUS_SUCCESS &&
+            countPointsInFront(result.model.R, result.model.t, data.points1, data.points2,
+                               data.Kinv, &result.mask, &result.inFront) == 0)
+            rejectModel(result, STATUS_DEGENERATE_CONFIGURATION, kNoCheirality, result.model);
+        if (result.status == STATUS_PURE_ROTATION)
+            result.inFront = result.mask;
+        else if (result.status != STATUS_SUCCESS)
+            result.inFront.assign(result.mask.size(), 0);
+    }
+};
+
+} // namespace
+
+std::unique_ptr<ModelSpace> createMotionSpace()
+{
+    return std::make_unique<MotionSpace>();
+}
+
+} // namespace detail
+} // namespace rcme
+} // namespace cv
