@@ -26,7 +26,7 @@ import numpy as np
 
 import rcme
 
-from two_view_demo import METHOD_NAMES, parse_method
+from two_view_demo import method_names, parse_method
 
 
 def same_report(a, b):
@@ -64,7 +64,7 @@ def main(argv=None):
     ap.add_argument("--pairs", type=int, default=200)
     ap.add_argument("--points", type=int, default=500)
     ap.add_argument("--inlier-ratio", type=float, default=0.5)
-    ap.add_argument("--method", default="standard", help=METHOD_NAMES)
+    ap.add_argument("--method", default="standard", help=method_names())
     ap.add_argument("--threads", default="1,2", help="comma-separated thread counts")
     ap.add_argument("--repeats", type=int, default=3)
     args = ap.parse_args(argv)

@@ -12,6 +12,10 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/rcme.hpp>
 
+// The library's list of its enums' values, generated from its public headers
+// (modules/rcme/src/generated/, on the samples' include path).
+#include "enum_tables.inc"
+
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -64,10 +68,16 @@ inline int parseInt(const std::string& key, const std::string& value)
     throw UsageError("--" + key + " expects an integer, got '" + value + "'");
 }
 
-//! The --method values every sample accepts, as listed in the usage texts.
-inline const char* methodNames()
+//! The --method values every sample accepts, as listed in the usage texts: the library's name
+//! (cv::rcme::methodName) of each Method, in the order of the library's generated list.
+inline std::string methodNames()
 {
-    return "rcme, prcme, standard, mlesac, covransac";
+    std::string names;
+#define RCME_SAMPLE_METHOD_NAME(value, name)                                                       \
+    names += (names.empty() ? "" : ", ") + cv::rcme::methodName(cv::rcme::value);
+    RCME_METHOD_VALUES(RCME_SAMPLE_METHOD_NAME)
+#undef RCME_SAMPLE_METHOD_NAME
+    return names;
 }
 
 // The library's names (cv::rcme::methodFromString); a usage error for any other.

@@ -67,7 +67,7 @@ def parse_args(argv):
                "large; 2 usage or input/output error; 3 error raised by the library.")
     parser.add_argument("images", nargs="*", metavar="img", help="img1 img2 (default: bundled)")
     parser.add_argument("--method", default="standard",
-                        help="rcme's method: %s (default standard)" % METHOD_NAMES)
+                        help="rcme's method: %s (default standard)" % method_names())
     parser.add_argument("--solver", default="auto",
                         help="auto (default: five with K, else eight), eight, seven, five")
     parser.add_argument("--opencv-method", choices=("essential", "fundamental", "none"),
@@ -107,7 +107,15 @@ def parse_args(argv):
     return args
 
 
-METHOD_NAMES = "rcme, prcme, standard, mlesac, covransac"
+def method_names():
+    """The --method values, as the usage lists them: the library's name (methodName) of each
+    METHOD_* constant, in the order of their values."""
+    try:
+        rcme = load_rcme()[0]
+    except UsageError:  # reported when the estimation starts
+        return "the names of rcme's methods"
+    values = sorted(getattr(rcme, name) for name in dir(rcme) if name.startswith("METHOD_"))
+    return ", ".join(rcme.methodName(value) for value in values)
 
 
 def parse_method(rcme, name):
@@ -115,7 +123,7 @@ def parse_method(rcme, name):
     try:
         return rcme.methodFromString(name)
     except Exception:  # rcme.error or cv2.error, which name the accepted values too
-        raise UsageError("unknown --method '%s' (%s)" % (name, METHOD_NAMES))
+        raise UsageError("unknown --method '%s' (%s)" % (name, method_names()))
 
 
 def parse_solver(rcme, name):

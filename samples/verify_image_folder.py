@@ -38,7 +38,8 @@ try:
 except ImportError:
     sys.exit("error: this sample needs OpenCV's Python bindings (cv2) with SIFT")
 
-from two_view_demo import METHOD_NAMES, UsageError, parse_method, read_camera_matrix, read_image
+from two_view_demo import (UsageError, method_names, parse_method,
+                           read_camera_matrix, read_image)
 
 EXIT_OK, EXIT_USAGE, EXIT_LIBRARY_ERROR = 0, 2, 3
 IMAGE_EXTENSIONS = (".jpg", ".jpeg", ".png", ".ppm", ".pgm", ".bmp", ".tif", ".tiff")
@@ -53,7 +54,7 @@ def parse_args(argv):
     ap.add_argument("--k", help="camera matrix file (9 numbers); 'none': uncalibrated; "
                                 "default: FOLDER/K.txt when it exists")
     ap.add_argument("--out", default="pairs.csv", help="CSV to write (default pairs.csv)")
-    ap.add_argument("--method", default="standard", help="rcme method: " + METHOD_NAMES)
+    ap.add_argument("--method", default="standard", help="rcme method: " + method_names())
     ap.add_argument("--sigma", type=float, default=1.0, help="pixel noise (default 1)")
     ap.add_argument("--threads", type=int, default=0,
                     help="threads of the batch call; 0: every core")

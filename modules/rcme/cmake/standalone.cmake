@@ -106,7 +106,20 @@ write_basic_package_version_file("${CMAKE_BINARY_DIR}/rcmeConfigVersion.cmake"
 install(FILES "${CMAKE_BINARY_DIR}/rcmeConfig.cmake" "${CMAKE_BINARY_DIR}/rcmeConfigVersion.cmake"
   DESTINATION ${RCME_CMAKE_DIR})
 
+# The interpreter of the Python module and of the Python-run tests: Debian's by default (the one
+# python3-numpy, python3-opencv and python3-pytest belong to); -DPython3_EXECUTABLE=... changes it.
+if(NOT Python3_EXECUTABLE)
+  set(Python3_EXECUTABLE "/usr/bin/python3" CACHE FILEPATH "Python interpreter of the rcme module")
+endif()
+
 if(RCME_BUILD_TESTS)
+  # The generated tables (src/generated/, misc/python/standalone/generated_bindings.inc) match
+  # the public headers: fails naming misc/generate_tables.py when a header changed without them.
+  add_test(NAME rcme_generated_tables_up_to_date
+    COMMAND "${Python3_EXECUTABLE}" "${RCME_MODULE_DIR}/misc/generate_tables.py" --check)
+  set_tests_properties(rcme_generated_tables_up_to_date PROPERTIES
+    ENVIRONMENT "PYTHONDONTWRITEBYTECODE=1")
+
   find_package(GTest REQUIRED)
   find_package(Threads REQUIRED)
   # The TSan job runs the concurrency tests only (test/hardening/run_sanitizers.sh --tsan), so it

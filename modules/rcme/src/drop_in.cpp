@@ -27,8 +27,6 @@ constexpr double kEssentialDefaultThreshold = 1.0;   // findEssentialMat's defau
 constexpr double kUsacDefaultThreshold = 1.5;        // cv::UsacParams().threshold
 constexpr double kDefaultConfidence = 0.99;
 constexpr int kDefaultMaxIters = 1000; // the forms without maxIters
-// Params::maxIterations' upper limit: OpenCV takes any count, the cap keeps a call bounded.
-constexpr int kMaxIterationsLimit = 10000000;
 // The inlier threshold is 1.96 sigma (Params::threshold), so a drop-in threshold implies sigma.
 constexpr double kThresholdPerSigma = 1.959963984540054;
 
@@ -86,7 +84,7 @@ Params dropInParams(int method, double threshold, double fallbackThreshold, int 
     Params p;
     applyMethodFlag(method, p);
     setThreshold(threshold, fallbackThreshold, p);
-    p.maxIterations = std::min(std::max(maxIters, 1), kMaxIterationsLimit); // OpenCV: >= 1
+    p.maxIterations = std::min(std::max(maxIters, 1), detail::kMaxIterationsLimit); // OpenCV: >= 1
     return p;
 }
 
@@ -136,7 +134,7 @@ Params usacParams(const UsacParams& usac)
         p.method = METHOD_MLESAC;
     if (!(p.confidence > 0 && p.confidence < 1))
         p.confidence = kDefaultConfidence;
-    p.maxIterations = std::min(std::max(p.maxIterations, 1), kMaxIterationsLimit);
+    p.maxIterations = std::min(std::max(p.maxIterations, 1), detail::kMaxIterationsLimit);
     setThreshold(usac.threshold, kUsacDefaultThreshold, p);
     return p;
 }

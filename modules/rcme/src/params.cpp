@@ -3,6 +3,10 @@
 
 #include "precomp.hpp"
 
+#include "params_check.hpp"
+
+#include "generated/enum_tables.inc"
+
 namespace cv {
 namespace rcme {
 
@@ -68,56 +72,119 @@ Report::Report()
 {
 }
 
-String statusToString(Status status)
-{
-    switch (status) {
-    case STATUS_SUCCESS:
-        return "success";
-    case STATUS_POOR_QUALITY_INPUT:
-        return "poor quality input";
-    case STATUS_NOT_ENOUGH_POINTS:
-        return "not enough points";
-    case STATUS_DEGENERATE_CONFIGURATION:
-        return "degenerate configuration";
-    case STATUS_PURE_ROTATION:
-        return "pure rotation";
-    case STATUS_UNDETERMINED_MOTION:
-        return "undetermined motion";
-    }
-    return cv::format("unknown status %d", static_cast<int>(status));
-}
-
 namespace {
 
-constexpr Method kMethods[] = {METHOD_RCME, METHOD_PRCME, METHOD_STANDARD, METHOD_MLESAC,
-                               METHOD_COV_RANSAC};
-
-const char* nameOf(Method method)
+//! One value of a public enum and its name in the generated tables.
+template <class E> struct NamedValue
 {
-    switch (method) {
-    case METHOD_RCME:
-        return "rcme";
-    case METHOD_PRCME:
-        return "prcme";
-    case METHOD_STANDARD:
-        return "standard";
-    case METHOD_MLESAC:
-        return "mlesac";
-    case METHOD_COV_RANSAC:
-        return "covransac";
-    }
+    E value;
+    const char* name; //!< lower case, words joined by dashes: "cov-ransac", "poor-quality-input"
+};
+
+#define RCME_NAMED_VALUE(value, name) {value, name},
+constexpr NamedValue<Method> kMethods[] = {RCME_METHOD_VALUES(RCME_NAMED_VALUE)};
+constexpr NamedValue<SamplerKind> kSamplers[] = {RCME_SAMPLER_KIND_VALUES(RCME_NAMED_VALUE)};
+constexpr NamedValue<MinimalSolverKind> kSolvers[] = {
+    RCME_MINIMAL_SOLVER_KIND_VALUES(RCME_NAMED_VALUE)};
+constexpr NamedValue<VerificationKind> kVerifications[] = {
+    RCME_VERIFICATION_KIND_VALUES(RCME_NAMED_VALUE)};
+constexpr NamedValue<Status> kStatuses[] = {RCME_STATUS_VALUES(RCME_NAMED_VALUE)};
+#undef RCME_NAMED_VALUE
+
+//! The generated name of `value`, or nullptr when it is no value of the enum.
+template <class E, size_t N> const char* nameOf(const NamedValue<E> (&table)[N], E value)
+{
+    for (const NamedValue<E>& entry : table)
+        if (entry.value == value)
+            return entry.name;
     return nullptr;
+}
+
+//! A generated name with each dash replaced by `joint` (or dropped when it is 0).
+std::string spelled(const char* name, char joint)
+{
+    std::string out;
+    for (const char* c = name; *c; ++c)
+        if (*c != '-')
+            out += *c;
+        else if (joint)
+            out += joint;
+    return out;
+}
+
+template <class E, size_t N>
+void checkEnum(const NamedValue<E> (&table)[N], E value, const char* field)
+{
+    if (!nameOf(table, value))
+        CV_Error(Error::StsBadArg,
+                 cv::format("Params.%s: unknown value %d", field, static_cast<int>(value)));
+}
+
+void checkRange(bool ok, const char* message)
+{
+    if (!ok)
+        CV_Error(Error::StsBadArg, message);
 }
 
 } // namespace
 
+namespace detail {
+
+void validateParams(const Params& p)
+{
+    checkEnum(kMethods, p.method, "method");
+    checkEnum(kSamplers, p.sampler, "sampler");
+    checkEnum(kSolvers, p.solver, "solver");
+    checkEnum(kVerifications, p.verification, "verification");
+    checkRange(std::isfinite(p.sigma) && p.sigma > 0, "Params.sigma must be positive and finite");
+    checkRange(std::isfinite(p.threshold), "Params.threshold must be finite (<= 0: from sigma)");
+    checkRange(p.confidence > 0 && p.confidence < 1, "Params.confidence must be in (0, 1)");
+    checkRange(p.cleanSampleSuccessRate > 0 && p.cleanSampleSuccessRate <= 1,
+               "Params.cleanSampleSuccessRate must be in (0, 1]");
+    checkRange(p.maxIterations >= 1 && p.maxIterations <= kMaxIterationsLimit,
+               "Params.maxIterations must be in [1, 10000000]");
+    checkRange(p.refineIterations >= 0 && p.refineIterations <= 1000,
+               "Params.refineIterations must be in [0, 1000]");
+    checkRange(p.alpha > 0 && p.alpha < 1, "Params.alpha must be in (0, 1)");
+    checkRange(std::isfinite(p.entropyThreshold), "Params.entropyThreshold must be finite");
+    checkRange(p.inlierRatioFactor > 0 && p.inlierRatioFactor <= 1,
+               "Params.inlierRatioFactor must be in (0, 1]");
+    checkRange(p.priorInlierRatio <= 1 && !std::isnan(p.priorInlierRatio),
+               "Params.priorInlierRatio must be <= 1 (<= 0: estimated)");
+    checkRange(p.consistencyDof >= 1 && p.consistencyDof <= 4,
+               "Params.consistencyDof must be in [1, 4]");
+    checkRange(p.sampleFitIterations >= 0 && p.sampleFitIterations <= 100,
+               "Params.sampleFitIterations must be in [0, 100]");
+    checkRange(std::isfinite(p.earlyTerminationEntropy),
+               "Params.earlyTerminationEntropy must be finite (<= 0: off)");
+    checkRange(!std::isnan(p.timeBudget), "Params.timeBudget must be a number (<= 0: none)");
+    checkRange(!std::isnan(p.ambiguityMargin),
+               "Params.ambiguityMargin must be a number (<= 0: off)");
+    checkRange(!std::isnan(p.maxRotationStdDeg),
+               "Params.maxRotationStdDeg must be a number (<= 0: off)");
+    checkRange(!std::isnan(p.maxTranslationStdDeg),
+               "Params.maxTranslationStdDeg must be a number (<= 0: off)");
+}
+
+} // namespace detail
+
+String statusToString(Status status)
+{
+    // The generated names, words joined by spaces: "poor quality input".
+    if (const char* name = nameOf(kStatuses, status))
+        return spelled(name, ' ');
+    return cv::format("unknown status %d", static_cast<int>(status));
+}
+
+// A method's name is its generated one without dashes ("covransac"); methodFromString drops
+// dashes and underscores from its argument, so "cov-ransac" and "cov_ransac" are accepted too.
 String methodName(Method method)
 {
-    const char* name = nameOf(method);
+    const char* name = nameOf(kMethods, method);
     if (!name)
         CV_Error(Error::StsBadArg,
                  cv::format("method: unknown value %d", static_cast<int>(method)));
-    return name;
+    return spelled(name, 0);
 }
 
 Method methodFromString(const String& name)
@@ -128,10 +195,11 @@ Method methodFromString(const String& name)
     key.erase(std::remove_if(key.begin(), key.end(), [](char c) { return c == '-' || c == '_'; }),
               key.end());
     std::string accepted;
-    for (Method method : kMethods) {
-        if (key == nameOf(method))
-            return method;
-        accepted += (accepted.empty() ? "" : ", ") + std::string(nameOf(method));
+    for (const NamedValue<Method>& method : kMethods) {
+        const std::string methodKey = spelled(method.name, 0);
+        if (key == methodKey)
+            return method.value;
+        accepted += (accepted.empty() ? "" : ", ") + methodKey;
     }
     CV_Error(Error::StsBadArg,
              cv::format("name: unknown method '%s' (%s)", name.c_str(), accepted.c_str()));

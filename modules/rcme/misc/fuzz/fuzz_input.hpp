@@ -7,6 +7,12 @@
 #ifndef OPENCV_RCME_FUZZ_INPUT_HPP
 #define OPENCV_RCME_FUZZ_INPUT_HPP
 
+#include <opencv2/calib3d.hpp>
+#include <opencv2/rcme/params.hpp>
+
+// The library's list of the Method values (src/ is on the fuzz targets' include path).
+#include "generated/enum_tables.inc"
+
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
@@ -58,6 +64,16 @@ constexpr uint32_t kCallsWithoutIterationCap =
 //! At most this many of the requested calls run per input (the lowest set bits), so that one
 //! execution stays cheap whatever the mutation does to the call bits.
 constexpr int kMaxCallsPerInput = 2;
+
+//! What the method byte (FuzzCase::method) picks, by its value modulo kNumMethodCodes: every
+//! cv::rcme::Method in declaration order (the library's generated list, so a new method is
+//! fuzzed too), then three values that are none: 0, -1 and an OpenCV flag. The drop-ins take the
+//! first of those three (code % kNumMethodCodes == kNumMethods) as one of OpenCV's flags instead.
+#define RCME_FUZZ_METHOD_CODE(value, name) cv::rcme::value,
+constexpr int kMethodCodes[] = {RCME_METHOD_VALUES(RCME_FUZZ_METHOD_CODE) 0, -1, cv::FM_LMEDS};
+#undef RCME_FUZZ_METHOD_CODE
+constexpr int kNumMethodCodes = static_cast<int>(sizeof(kMethodCodes) / sizeof(kMethodCodes[0]));
+constexpr int kNumMethods = kNumMethodCodes - 3;
 
 enum Flag : uint8_t
 {

@@ -46,9 +46,7 @@ int pickCount(uint8_t code, int modulus, int offset, std::initializer_list<int> 
 
 Method pickMethod(uint8_t code)
 {
-    static const int kMethods[] = {METHOD_STANDARD,   METHOD_RCME, METHOD_PRCME, METHOD_MLESAC,
-                                   METHOD_COV_RANSAC, 0,           -1,           FM_LMEDS};
-    return static_cast<Method>(kMethods[code % 8]);
+    return static_cast<Method>(rcme_fuzz::kMethodCodes[code % rcme_fuzz::kNumMethodCodes]);
 }
 
 // The drop-ins also take every OpenCV method flag.
@@ -57,7 +55,7 @@ int pickMethodFlag(uint8_t code)
     static const int kOpenCVFlags[] = {FM_7POINT, FM_8POINT,     FM_LMEDS,      FM_RANSAC,
                                        RHO,       USAC_DEFAULT,  USAC_PARALLEL, USAC_FM_8PTS,
                                        USAC_FAST, USAC_ACCURATE, USAC_PROSAC,   USAC_MAGSAC};
-    if (code % 8 == 5)
+    if (code % rcme_fuzz::kNumMethodCodes == rcme_fuzz::kNumMethods)
         return kOpenCVFlags[(code >> 3) % 12];
     return pickMethod(code);
 }

@@ -108,12 +108,15 @@ int main(int argc, char** argv)
         return 2;
     }
     const std::string folder = argv[1];
-    // The method bytes follow pickMethod() in fuzz_public_api.cpp: 0 Standard, 1 RCME,
-    // 2 pRCME, 3 MLESAC, 4 Cov-RANSAC, 5 OpenCV's RANSAC flag.
-    const char* methodNames[] = {"standard", "rcme", "prcme", "mlesac", "cov", "ransac"};
+    // The method bytes follow rcme_fuzz::kMethodCodes: every method, then an OpenCV flag.
+    const auto seedName = [](int code) {
+        return code < rcme_fuzz::kNumMethods ? cv::rcme::methodName(static_cast<cv::rcme::Method>(
+                                                   rcme_fuzz::kMethodCodes[code]))
+                                             : std::string("opencv_flag");
+    };
     int files = 0;
     for (int kind = 0; kind < 2; ++kind)
-        for (uint8_t method = 0; method < 6; ++method) {
+        for (uint8_t method = 0; method <= rcme_fuzz::kNumMethods; ++method) {
             cv::rcme::SceneParams sp;
             sp.kind = static_cast<cv::rcme::SceneKind>(kind);
             sp.numPoints = 32;
@@ -128,7 +131,7 @@ int main(int argc, char** argv)
             // One function per seed (each one at least once over the 24 seeds): an execution stays
             // short, and mutating the call bits combines them.
             c.calls = static_cast<uint32_t>(1u << (files % rcme_fuzz::kNumCalls));
-            write(folder, std::string(kind ? "generic_" : "corridor_") + methodNames[method],
+            write(folder, std::string(kind ? "generic_" : "corridor_") + seedName(method),
                   fitToCalls(c));
             ++files;
 
@@ -137,8 +140,7 @@ int main(int argc, char** argv)
             c.solver = static_cast<uint8_t>(method % 2);
             c.layouts = static_cast<uint8_t>(0x10 * (method % 7) + (method + 1) % 7);
             c.calls = static_cast<uint32_t>(1u << (files % rcme_fuzz::kNumCalls));
-            write(folder,
-                  std::string(kind ? "generic_" : "corridor_") + methodNames[method] + "_nok",
+            write(folder, std::string(kind ? "generic_" : "corridor_") + seedName(method) + "_nok",
                   fitToCalls(c));
             ++files;
         }

@@ -12,9 +12,6 @@ namespace detail {
 
 namespace {
 
-// Above this many iterations a call could run for hours; a bound keeps "never a hang" true.
-constexpr int kMaxIterationsLimit = 10000000;
-
 template <typename T>
 void appendPoints(const Mat& m, int count, std::vector<Eigen::Vector2d>& out, const char* argName)
 {
@@ -29,12 +26,6 @@ void appendPoints(const Mat& m, int count, std::vector<Eigen::Vector2d>& out, co
                      cv::format("%s: point %d has a non-finite coordinate", argName, i));
         out[static_cast<size_t>(i)] = Eigen::Vector2d(x, y);
     }
-}
-
-void checkRange(bool ok, const char* message)
-{
-    if (!ok)
-        CV_Error(Error::StsBadArg, message);
 }
 
 } // namespace
@@ -114,60 +105,6 @@ Eigen::Matrix3d cameraMatrixFromFocal(double focal, Point2d pp)
     Eigen::Matrix3d K;
     K << focal, 0, pp.x, 0, focal, pp.y, 0, 0, 1;
     return K;
-}
-
-void validateParams(const Params& p)
-{
-    switch (p.method) {
-    case METHOD_STANDARD:
-    case METHOD_RCME:
-    case METHOD_PRCME:
-    case METHOD_MLESAC:
-    case METHOD_COV_RANSAC:
-        break;
-    default:
-        CV_Error(Error::StsBadArg,
-                 cv::format("Params.method: unknown value %d", static_cast<int>(p.method)));
-    }
-    if (p.sampler != SAMPLER_UNIFORM && p.sampler != SAMPLER_PROSAC)
-        CV_Error(Error::StsBadArg,
-                 cv::format("Params.sampler: unknown value %d", static_cast<int>(p.sampler)));
-    if (p.solver != SOLVER_EIGHT_POINT && p.solver != SOLVER_SEVEN_POINT &&
-        p.solver != SOLVER_FIVE_POINT && p.solver != SOLVER_AUTO)
-        CV_Error(Error::StsBadArg,
-                 cv::format("Params.solver: unknown value %d", static_cast<int>(p.solver)));
-    if (p.verification != VERIFICATION_AUTO && p.verification != VERIFICATION_NONE &&
-        p.verification != VERIFICATION_SPRT)
-        CV_Error(Error::StsBadArg, cv::format("Params.verification: unknown value %d",
-                                              static_cast<int>(p.verification)));
-    checkRange(std::isfinite(p.sigma) && p.sigma > 0, "Params.sigma must be positive and finite");
-    checkRange(std::isfinite(p.threshold), "Params.threshold must be finite (<= 0: from sigma)");
-    checkRange(p.confidence > 0 && p.confidence < 1, "Params.confidence must be in (0, 1)");
-    checkRange(p.cleanSampleSuccessRate > 0 && p.cleanSampleSuccessRate <= 1,
-               "Params.cleanSampleSuccessRate must be in (0, 1]");
-    checkRange(p.maxIterations >= 1 && p.maxIterations <= kMaxIterationsLimit,
-               "Params.maxIterations must be in [1, 10000000]");
-    checkRange(p.refineIterations >= 0 && p.refineIterations <= 1000,
-               "Params.refineIterations must be in [0, 1000]");
-    checkRange(p.alpha > 0 && p.alpha < 1, "Params.alpha must be in (0, 1)");
-    checkRange(std::isfinite(p.entropyThreshold), "Params.entropyThreshold must be finite");
-    checkRange(p.inlierRatioFactor > 0 && p.inlierRatioFactor <= 1,
-               "Params.inlierRatioFactor must be in (0, 1]");
-    checkRange(p.priorInlierRatio <= 1 && !std::isnan(p.priorInlierRatio),
-               "Params.priorInlierRatio must be <= 1 (<= 0: estimated)");
-    checkRange(p.consistencyDof >= 1 && p.consistencyDof <= 4,
-               "Params.consistencyDof must be in [1, 4]");
-    checkRange(p.sampleFitIterations >= 0 && p.sampleFitIterations <= 100,
-               "Params.sampleFitIterations must be in [0, 100]");
-    checkRange(std::isfinite(p.earlyTerminationEntropy),
-               "Params.earlyTerminationEntropy must be finite (<= 0: off)");
-    checkRange(!std::isnan(p.timeBudget), "Params.timeBudget must be a number (<= 0: none)");
-    checkRange(!std::isnan(p.ambiguityMargin),
-               "Params.ambiguityMargin must be a number (<= 0: off)");
-    checkRange(!std::isnan(p.maxRotationStdDeg),
-               "Params.maxRotationStdDeg must be a number (<= 0: off)");
-    checkRange(!std::isnan(p.maxTranslationStdDeg),
-               "Params.maxTranslationStdDeg must be a number (<= 0: off)");
 }
 
 double inlierThreshold(const Params& params)

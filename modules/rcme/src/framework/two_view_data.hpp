@@ -4,6 +4,7 @@
 #ifndef OPENCV_RCME_FRAMEWORK_TWO_VIEW_DATA_HPP
 #define OPENCV_RCME_FRAMEWORK_TWO_VIEW_DATA_HPP
 
+#include "params_check.hpp"
 #include "precomp.hpp"
 
 namespace cv {
@@ -65,9 +66,6 @@ bool readCameraMatrix(InputArray cameraMatrix, const char* argName, Eigen::Matri
 
 //! Builds K from OpenCV's focal length / principal point form; throws naming "focal" or "pp".
 Eigen::Matrix3d cameraMatrixFromFocal(double focal, Point2d pp);
-
-//! Checks every field of `params`, throwing StsBadArg (or StsNotImplemented) naming it.
-void validateParams(const Params& params);
 
 //! Validates and assembles the problem; throws as readPoints/readCameraMatrix/validateParams.
 TwoViewData makeTwoViewData(InputArray points1, InputArray points2, InputArray cameraMatrix,

@@ -275,41 +275,63 @@ cv::Mat matField(py::handle value, const char* name)
 // ------------------------------------------------------------------------------------------
 // Struct classes
 
+//! A value of a public enum: its constant's name (METHOD_RCME) and value.
+struct EnumConstant
+{
+    const char* name;
+    int value;
+};
+
 //! Adds the read/write attributes of a struct and remembers their names (for keyword
-//! construction and repr).
+//! construction and repr). Each attribute's docstring is its header comment followed by its
+//! value in a default-constructed T.
 template <class T> class Fields
 {
 public:
     explicit Fields(py::class_<T>& cls) : cls_(cls) {}
 
-    template <class M> Fields& plain(const char* name, M T::*member, const char* doc = "")
+    template <class M> Fields& plain(const char* name, M T::*member, const char* doc)
     {
         const std::string field = qualified(name);
+        const std::string text = withDefault(doc, "", py::repr(py::cast(defaults_.*member)));
         cls_.def_property(
             name, [member](const T& self) { return self.*member; },
-            [member, field](T& self, py::object v) { self.*member = castField<M>(v, field); }, doc);
+            [member, field](T& self, py::object v) { self.*member = castField<M>(v, field); },
+            text.c_str());
         names_.emplace_back(name);
         return *this;
     }
 
-    template <class E> Fields& enumInt(const char* name, E T::*member, const char* doc = "")
+    //! An enum field, an int in Python.
+    template <class E>
+    Fields& enumInt(const char* name, E T::*member, const std::vector<EnumConstant>& constants,
+                    const char* doc)
     {
         const std::string field = qualified(name);
+        std::string values, defaultName = std::to_string(static_cast<int>(defaults_.*member));
+        for (const EnumConstant& c : constants) {
+            values += std::string(values.empty() ? "one of " : ", ") + c.name;
+            if (c.value == static_cast<int>(defaults_.*member))
+                defaultName = c.name;
+        }
+        const std::string text = withDefault(doc, values + "; ", defaultName);
         cls_.def_property(
             name, [member](const T& self) { return static_cast<int>(self.*member); },
             [member, field](T& self, py::object v) {
                 self.*member = static_cast<E>(castField<int>(v, field));
             },
-            doc);
+            text.c_str());
         names_.emplace_back(name);
         return *this;
     }
 
-    Fields& mat(const char* name, cv::Mat T::*member, const char* doc = "")
+    Fields& mat(const char* name, cv::Mat T::*member, const char* doc)
     {
+        const std::string text = withDefault(doc, "", (defaults_.*member).empty() ? "None" : "");
         cls_.def_property(
             name, [member](const T& self) { return fromMat(self.*member); },
-            [member, name](T& self, py::object v) { self.*member = matField(v, name); }, doc);
+            [member, name](T& self, py::object v) { self.*member = matField(v, name); },
+            text.c_str());
         names_.emplace_back(name);
         matNames_.emplace_back(name);
         return *this;
@@ -384,6 +406,14 @@ public:
     }
 
 private:
+    //! "doc\nprefix default value": the header's comment and the default of this build.
+    static std::string withDefault(const char* doc, const std::string& prefix,
+                                   const std::string& value)
+    {
+        const std::string note = value.empty() ? "" : prefix + "default " + value;
+        return std::string(doc) + (*doc && !note.empty() ? "\n" : "") + note;
+    }
+
     std::string qualified(const char* name) const
     {
         return py::cast<std::string>(cls_.attr("__name__")) + "." + name;
@@ -408,9 +438,13 @@ private:
     }
 
     py::class_<T>& cls_;
+    const T defaults_{};
     std::vector<std::string> names_;
     std::vector<std::string> matNames_; //!< the cv::Mat fields (NumPy arrays or None)
 };
+
+// The enums' constants and the fields' chains, generated from the public headers.
+#include "generated_bindings.inc"
 
 //! A cv::UsacParams from any object with cv2.UsacParams' attributes (duck typing, so that a
 //! cv2.UsacParams from the installed cv2 works without this module depending on cv2).
@@ -669,30 +703,9 @@ PYBIND11_MODULE(_rcme, m)
     });
 
     // --- enum values: module-level ints, as the generator exports plain enums
-    m.attr("METHOD_RCME") = static_cast<int>(METHOD_RCME);
-    m.attr("METHOD_PRCME") = static_cast<int>(METHOD_PRCME);
-    m.attr("METHOD_STANDARD") = static_cast<int>(METHOD_STANDARD);
-    m.attr("METHOD_MLESAC") = static_cast<int>(METHOD_MLESAC);
-    m.attr("METHOD_COV_RANSAC") = static_cast<int>(METHOD_COV_RANSAC);
-    m.attr("SAMPLER_UNIFORM") = static_cast<int>(SAMPLER_UNIFORM);
-    m.attr("SAMPLER_PROSAC") = static_cast<int>(SAMPLER_PROSAC);
-    m.attr("SOLVER_EIGHT_POINT") = static_cast<int>(SOLVER_EIGHT_POINT);
-    m.attr("SOLVER_SEVEN_POINT") = static_cast<int>(SOLVER_SEVEN_POINT);
-    m.attr("SOLVER_FIVE_POINT") = static_cast<int>(SOLVER_FIVE_POINT);
-    m.attr("SOLVER_AUTO") = static_cast<int>(SOLVER_AUTO);
-    m.attr("VERIFICATION_AUTO") = static_cast<int>(VERIFICATION_AUTO);
-    m.attr("VERIFICATION_NONE") = static_cast<int>(VERIFICATION_NONE);
-    m.attr("VERIFICATION_SPRT") = static_cast<int>(VERIFICATION_SPRT);
-    m.attr("STATUS_SUCCESS") = static_cast<int>(STATUS_SUCCESS);
-    m.attr("STATUS_POOR_QUALITY_INPUT") = static_cast<int>(STATUS_POOR_QUALITY_INPUT);
-    m.attr("STATUS_NOT_ENOUGH_POINTS") = static_cast<int>(STATUS_NOT_ENOUGH_POINTS);
-    m.attr("STATUS_DEGENERATE_CONFIGURATION") = static_cast<int>(STATUS_DEGENERATE_CONFIGURATION);
-    m.attr("STATUS_PURE_ROTATION") = static_cast<int>(STATUS_PURE_ROTATION);
-    m.attr("STATUS_UNDETERMINED_MOTION") = static_cast<int>(STATUS_UNDETERMINED_MOTION);
-    m.attr("SCENE_CORRIDOR") = static_cast<int>(SCENE_CORRIDOR);
-    m.attr("SCENE_GENERIC") = static_cast<int>(SCENE_GENERIC);
-    m.attr("SCENE_PLANE") = static_cast<int>(SCENE_PLANE);
-    m.attr("SCENE_PURE_ROTATION") = static_cast<int>(SCENE_PURE_ROTATION);
+    for (const std::vector<EnumConstant>* constants : kEnumConstants)
+        for (const EnumConstant& c : *constants)
+            m.attr(c.name) = c.value;
 
     // --- Params
     py::class_<Params> params(m, "Params",
@@ -715,55 +728,7 @@ PYBIND11_MODULE(_rcme, m)
     params.def_static("asPublished", asPublished, py::arg("method"), docAsPublished);
     m.def("Params_asPublished", asPublished, py::arg("method"), docAsPublished);
     Fields<Params> paramsFields(params);
-    paramsFields.enumInt("method", &Params::method, "METHOD_*; default METHOD_STANDARD")
-        .enumInt("sampler", &Params::sampler, "SAMPLER_*; default SAMPLER_UNIFORM")
-        .enumInt("solver", &Params::solver,
-                 "SOLVER_*; default SOLVER_AUTO (5-point with K, else 8-point)")
-        .enumInt("verification", &Params::verification,
-                 "VERIFICATION_*; default VERIFICATION_AUTO (SPRT for Cov-RANSAC and from 20000 "
-                 "points on)")
-        .plain("sigma", &Params::sigma, "noise standard deviation, pixels; default 1")
-        .plain("threshold", &Params::threshold, "Sampson threshold, pixels; <= 0: 1.96 sigma")
-        .plain("confidence", &Params::confidence, "default 0.99")
-        .plain("cleanSampleSuccessRate", &Params::cleanSampleSuccessRate,
-               "q of the adaptive bound log(1 - p) / log(1 - q w^m), in (0, 1]; default 0.3")
-        .plain("maxIterations", &Params::maxIterations, "default 1000")
-        .plain("exactIterations", &Params::exactIterations, "default False")
-        .plain("randomGeneratorState", &Params::randomGeneratorState, "seed; default 0")
-        .plain("refine", &Params::refine, "default True")
-        .plain("refineIterations", &Params::refineIterations, "default 20")
-        .plain("useEstimatedNoise", &Params::useEstimatedNoise,
-               "covariance from Report.noiseSigma (enough inliers) or Params.sigma; default True")
-        .plain("alpha", &Params::alpha, "significance of RCME's tests; default 0.05")
-        .plain("entropyThreshold", &Params::entropyThreshold, "RCME's mu over the noise floor")
-        .plain("inlierRatioFactor", &Params::inlierRatioFactor, "RCME's lambda")
-        .plain("priorInlierRatio", &Params::priorInlierRatio, "RCME's omega_p; <= 0: estimated")
-        .plain("consistencyDof", &Params::consistencyDof, "dof of RCME's chi-square tests")
-        .plain("sampleFitIterations", &Params::sampleFitIterations,
-               "RCME: Gauss-Newton iterations on each hypothesis' own sample; default 5")
-        .plain("sampleLeverage", &Params::sampleLeverage,
-               "RCME: leverage-corrected sample variance in the consistency test; default False")
-        .plain("earlyTerminationEntropy", &Params::earlyTerminationEntropy,
-               "RCME: stop once a candidate's mean excess entropy is at most this; <= 0 off")
-        .plain("localOptimization", &Params::localOptimization,
-               "refit new candidates on their inliers, and after a loop short of its confidence "
-               "bound draw minimal samples among the best's inliers (LO-RANSAC); default True")
-        .plain("degeneracyTest", &Params::degeneracyTest,
-               "final inliers fit a homography as well as F -> degenerate status; default True")
-        .plain("ambiguityMargin", &Params::ambiguityMargin,
-               "a distinct motion within this many sigma^2 of cost -> undetermined; default 2; "
-               "<= 0: off")
-        .plain("maxRotationStdDeg", &Params::maxRotationStdDeg,
-               "rotation std above this (degrees) -> undetermined; default 2; <= 0: off")
-        .plain("maxTranslationStdDeg", &Params::maxTranslationStdDeg,
-               "translation direction std above this (degrees) -> undetermined; default 6; "
-               "<= 0: off")
-        .mat("matchQuality", &Params::matchQuality,
-             "SAMPLER_PROSAC: one score per correspondence, higher is better; None: sorted")
-        .plain("isParallel", &Params::isParallel,
-               "evaluate hypotheses on OpenCV's threads, same result; default False")
-        .plain("timeBudget", &Params::timeBudget,
-               "wall-time budget of a call, seconds; <= 0 (default): none");
+    addFields(paramsFields);
     paramsFields.addKeywordInit("Params");
     paramsFields.addRepr("Params");
     paramsFields.addPickle();
@@ -772,31 +737,7 @@ PYBIND11_MODULE(_rcme, m)
     py::class_<Report> report(m, "Report", "Everything an estimation produced.");
     report.def(py::init<>(), "Report() -> <rcme.Report object>");
     Fields<Report> reportFields(report);
-    reportFields.enumInt("status", &Report::status, "STATUS_*")
-        .plain("message", &Report::message, "why the status is not STATUS_SUCCESS")
-        .mat("F", &Report::F, "3x3 fundamental matrix or None")
-        .mat("E", &Report::E, "3x3 essential matrix or None")
-        .mat("R", &Report::R, "3x3 rotation or None")
-        .mat("t", &Report::t, "3x1 unit translation or None")
-        .mat("mask", &Report::mask, "Nx1 uint8 inlier mask")
-        .plain("inlierCount", &Report::inlierCount)
-        .plain("iterations", &Report::iterations)
-        .plain("pointsPerHypothesis", &Report::pointsPerHypothesis)
-        .plain("meanEntropy", &Report::meanEntropy)
-        .mat("covariance", &Report::covariance, "5x5 motion covariance or None")
-        .plain("noiseSigma", &Report::noiseSigma, "noise estimated from the inliers (px), or NaN")
-        .mat("rotationStdDeg", &Report::rotationStdDeg,
-             "3x1 rotation std about camera 1's x, y, z (degrees) or None")
-        .plain("translationStdDeg", &Report::translationStdDeg,
-               "translation direction's largest angular std (degrees), or NaN")
-        .plain("rivalCostGap", &Report::rivalCostGap,
-               "cost gap to the best distinct rival motion (sigma^2), inf if none, NaN if untested")
-        .plain("timeSeconds", &Report::timeSeconds)
-        .mat("rejectedF", &Report::rejectedF,
-             "rejected, for diagnostics: 3x3 F the failed estimation rejected, or None")
-        .mat("rejectedR", &Report::rejectedR, "rejected, for diagnostics: its rotation or None")
-        .mat("rejectedT", &Report::rejectedT,
-             "rejected, for diagnostics: its unit translation or None");
+    addFields(reportFields);
     reportFields.addRepr("Report");
     reportFields.addPickle();
 
@@ -805,18 +746,7 @@ PYBIND11_MODULE(_rcme, m)
                                         "Parameters of the synthetic scene generator.");
     sceneParams.def(py::init<>(), "SceneParams() -> <rcme.SceneParams object>");
     Fields<SceneParams> sceneParamsFields(sceneParams);
-    sceneParamsFields.enumInt("kind", &SceneParams::kind, "SCENE_*; default SCENE_CORRIDOR")
-        .plain("numPoints", &SceneParams::numPoints)
-        .plain("inlierRatio", &SceneParams::inlierRatio)
-        .plain("sigma", &SceneParams::sigma)
-        .plain("seed", &SceneParams::seed)
-        .plain("focalLength", &SceneParams::focalLength)
-        .plain("imageWidth", &SceneParams::imageWidth)
-        .plain("imageHeight", &SceneParams::imageHeight)
-        .plain("baseline", &SceneParams::baseline)
-        .plain("corridorDepth", &SceneParams::corridorDepth)
-        .plain("corridorWidth", &SceneParams::corridorWidth)
-        .plain("corridorHeight", &SceneParams::corridorHeight);
+    addFields(sceneParamsFields);
     sceneParamsFields.addKeywordInit("SceneParams");
     sceneParamsFields.addRepr("SceneParams");
     sceneParamsFields.addPickle();
@@ -825,14 +755,7 @@ PYBIND11_MODULE(_rcme, m)
                                      "A generated two-view scene with its ground truth.");
     scene.def(py::init<>(), "SyntheticScene() -> <rcme.SyntheticScene object>");
     Fields<SyntheticScene> sceneFields(scene);
-    sceneFields.mat("points1", &SyntheticScene::points1)
-        .mat("points2", &SyntheticScene::points2)
-        .mat("inlierMask", &SyntheticScene::inlierMask)
-        .mat("cameraMatrix", &SyntheticScene::cameraMatrix)
-        .mat("R", &SyntheticScene::R)
-        .mat("t", &SyntheticScene::t)
-        .mat("F", &SyntheticScene::F)
-        .mat("E", &SyntheticScene::E);
+    addFields(sceneFields);
     sceneFields.addRepr("SyntheticScene");
     sceneFields.addPickle();
 
@@ -840,10 +763,7 @@ PYBIND11_MODULE(_rcme, m)
                                         "Differences between an estimated and a true motion.");
     motionError.def(py::init<>(), "MotionError() -> <rcme.MotionError object>");
     Fields<MotionError> motionErrorFields(motionError);
-    motionErrorFields.plain("dq", &MotionError::dq)
-        .plain("dt", &MotionError::dt)
-        .plain("rotationDeg", &MotionError::rotationDeg)
-        .plain("translationDeg", &MotionError::translationDeg);
+    addFields(motionErrorFields);
     motionErrorFields.addRepr("MotionError");
     motionErrorFields.addPickle();
 

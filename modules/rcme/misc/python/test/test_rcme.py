@@ -73,29 +73,32 @@ def _sampson(F, p1, p2):
     return np.abs(num) / np.sqrt(den)
 
 
-_HEADER_DIR = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "..",
-                           "include", "opencv2", "rcme")
+_MISC_DIR = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..")
+
+
+def _header_tables():
+    """The public headers as misc/generate_tables.py reads them (the tables of the library and
+    of the pybind11 module are generated from this reading): ({enum: [value]}, {struct:
+    [field]}, [function]) of every header, each value with .name and .value, each field with
+    .type and .name."""
+    import importlib.util
+    spec = importlib.util.spec_from_file_location(
+        "generate_tables", os.path.join(_MISC_DIR, "generate_tables.py"))
+    generator = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(generator)
+    headers = sorted(n for n in os.listdir(generator.HEADER_DIR) if n.endswith(".hpp"))
+    return generator.parse(headers)
 
 
 def _public_header_names():
-    """What the public headers declare for Python, read from their text: {struct: [fields]} of
-    the CV_EXPORTS_W_SIMPLE structs' CV_PROP_RW fields, {NAME: value} of the enum constants,
-    and the CV_EXPORTS_W function names. The bindings are checked against this, so a field or
-    constant added to a header and not to the pybind11 module fails a test."""
-    import re
-    structs, constants, functions = {}, {}, set()
-    for name in sorted(os.listdir(_HEADER_DIR)):
-        with open(os.path.join(_HEADER_DIR, name)) as f:
-            text = re.sub(r"/\*.*?\*/", "", f.read(), flags=re.S)
-        text = re.sub(r"//[^\n]*", "", text)
-        for struct, body in re.findall(r"struct CV_EXPORTS_W_SIMPLE (\w+)\s*\{(.*?)\n\};", text,
-                                       re.S):
-            structs[struct] = re.findall(r"CV_PROP_RW\s+[\w:<>]+\s+(\w+)\s*;", body)
-        for body in re.findall(r"\benum\s+\w+[^{;]*\{(.*?)\}", text, re.S):  # ": int" too
-            for constant, value in re.findall(r"\b([A-Z][A-Z0-9_]+)\s*=\s*(-?\d+)", body):
-                constants[constant] = int(value)
-        functions.update(re.findall(r"CV_EXPORTS_W\s+[\w:]+\s+(\w+)\s*\(", text))
-    return structs, constants, functions
+    """What the public headers declare for Python: {struct: [fields]} of the
+    CV_EXPORTS_W_SIMPLE structs' CV_PROP_RW fields, {NAME: value} of the enum constants, and
+    the CV_EXPORTS_W function names. The bindings are checked against this, so a field or
+    constant added to a header and missing from a binding fails a test."""
+    enums, structs, functions = _header_tables()
+    constants = {v.name: v.value for values in enums.values() for v in values}
+    return ({s: [f.name for f in fields] for s, fields in structs.items()}, constants,
+            set(functions))
 
 
 def _mask_quality(mask, truth):
@@ -250,27 +253,30 @@ class _RcmeSuite:
 
     def test_every_params_field_round_trips(self):
         """Every field of the header's Params, set on one object to a value other than its
-        default, reads back as set with the type it was set with (enums: another valid
-        constant), so no two fields share storage; a new object keeps the defaults."""
+        default, reads back as set with the type it was set with (enums: another value of the
+        field's enum), so no two fields share storage; a new object keeps the defaults. The
+        fields and their enums come from the header, so a new field is covered without an edit
+        here."""
         b = self.b
-        structs, constants, _ = _public_header_names()
-        enum_prefixes = {"method": "METHOD_", "sampler": "SAMPLER_", "solver": "SOLVER_",
-                         "verification": "VERIFICATION_"}
+        enums, structs, _ = _header_tables()
         defaults, p, values = b.Params(), b.Params(), {}
+        self.assertGreater(len(structs["Params"]), 25)
         for field in structs["Params"]:
-            default = getattr(defaults, field)
-            if field in enum_prefixes:
-                values[field] = next(v for k, v in sorted(constants.items())
-                                     if k.startswith(enum_prefixes[field]) and v != default)
+            default = getattr(defaults, field.name)
+            if field.type in enums:
+                values[field.name] = next(v.value for v in enums[field.type]
+                                          if v.value != default)
             elif isinstance(default, bool):
-                values[field] = not default
+                values[field.name] = not default
             elif isinstance(default, int):
-                values[field] = default + 3
+                values[field.name] = default + 3
             elif isinstance(default, float):
-                values[field] = default + 0.25
+                values[field.name] = default + 0.25
             else:  # a Mat (matchQuality)
-                values[field] = np.arange(4, dtype=np.float64).reshape(4, 1)
-            setattr(p, field, values[field])
+                self.assertEqual(field.type, "Mat", field.name)
+                values[field.name] = np.arange(4, dtype=np.float64).reshape(4, 1)
+            setattr(p, field.name, values[field.name])
+        self.assertEqual(list(values), [f.name for f in structs["Params"]])
         for field, value in values.items():
             got = getattr(p, field)
             if isinstance(value, np.ndarray):
@@ -1031,6 +1037,32 @@ class TestStandaloneRcme(_RcmeSuite, unittest.TestCase):
     binding_key = "standalone"
 
     # --- conveniences of the standalone module that cv2.rcme does not have
+
+    def test_every_field_is_documented_from_the_header(self):
+        """Each attribute's docstring is its header comment (doxygen markup dropped) and the
+        value of a default-constructed object; keyword construction and pickling carry every
+        field of the header's Params."""
+        b = self.b
+        enums, structs, _ = _header_tables()
+        for struct in ("Params", "Report", "SceneParams", "SyntheticScene", "MotionError"):
+            instance = getattr(b, struct)()
+            for field in structs[struct]:
+                doc = vars(getattr(b, struct))[field.name].__doc__ or ""
+                words = field.doc.split()[:2]
+                self.assertTrue(doc.startswith(" ".join(w.lstrip("#") for w in words)),
+                                "%s.%s: %r" % (struct, field.name, doc))
+                if field.type not in enums:  # an enum ends with its constant's name
+                    default = getattr(instance, field.name)
+                    self.assertTrue(doc.endswith("default %r" % (default,)),
+                                    "%s.%s: %r" % (struct, field.name, doc))
+        self.assertTrue(vars(b.Params)["method"].__doc__.endswith("; default METHOD_STANDARD"))
+        self.assertIn("one of METHOD_RCME, METHOD_PRCME", vars(b.Params)["method"].__doc__)
+        p = b.Params()
+        values = {f.name: getattr(p, f.name) for f in structs["Params"]}
+        values.update(sigma=0.5, method=b.METHOD_RCME, matchQuality=np.arange(3.0))
+        q = b.Params(**values)
+        self.assertEqual(repr(pickle.loads(pickle.dumps(q))), repr(q))
+        self.assertIn("sigma=0.5", repr(q))
 
     def test_keyword_construction(self):
         b = self.b
