@@ -22,7 +22,7 @@ public:
 
     bool refine(const TwoViewData& data, const std::vector<uchar>& mask, Model& model) override
     {
-        collect(mask);
+        maskIndices(mask, inliers_);
         return fitModelOn(data, inliers_, maxIterations_, model);
     }
 
@@ -75,7 +75,7 @@ private:
             if (2 * inFront >= static_cast<int>(std::count(selection.begin(), selection.end(), 1)))
                 chosen = &inFront_;
         }
-        collect(*chosen);
+        maskIndices(*chosen, inliers_);
         Model fitted = model;
         if (!fitFinalModelOn(data, inliers_, maxIterations_, fitted, confirmed_))
             return false;
@@ -94,17 +94,8 @@ private:
         return true;
     }
 
-    // Reused, and sized for every point at once: local optimisation refines inside the
-    // hypothesis loop, which must not allocate.
-    void collect(const std::vector<uchar>& mask)
-    {
-        inliers_.reserve(mask.size());
-        inliers_.clear();
-        for (size_t i = 0; i < mask.size(); ++i)
-            if (mask[i])
-                inliers_.push_back(static_cast<int>(i));
-    }
-
+    // Reused, and sized for every point at once (maskIndices): local optimisation refines inside
+    // the hypothesis loop, which must not allocate.
     std::vector<uchar> selection_, band_, inFront_;
     std::vector<int> confirmed_, finalInliers_;
     int maxIterations_;

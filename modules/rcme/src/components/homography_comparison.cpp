@@ -218,9 +218,7 @@ RotationComparison compareWithRotation(const TwoViewData& data, const Eigen::Mat
     CV_Assert(data.calibrated);
     RotationComparison result;
     std::vector<int> inliers;
-    for (size_t i = 0; i < mask.size(); ++i)
-        if (mask[i])
-            inliers.push_back(static_cast<int>(i));
+    maskIndices(mask, inliers);
     if (inliers.size() < 8)
         return result;
     // The rotation that best aligns the viewing rays (orthogonal Procrustes), then refined on the

@@ -45,10 +45,7 @@ MotionSupport refitOnOwnPoints(const TwoViewData& data, Model& motion)
     std::vector<int> inliers;
     for (int round = 0; round < kRounds; ++round) {
         motionSupport(data, motion, within, inFront);
-        inliers.clear();
-        for (size_t i = 0; i < within.size(); ++i)
-            if (within[i])
-                inliers.push_back(static_cast<int>(i));
+        maskIndices(within, inliers);
         Model fitted = motion;
         if (fitModelOn(data, inliers, kFitIterations, fitted))
             motion = fitted;

@@ -46,9 +46,7 @@ bool decideMotionOnInliers(const TwoViewData& data, EstimatorComponents& c, Rans
         return true;
     if (model.uncertaintyDof > 0) {
         std::vector<int> inliers;
-        for (size_t i = 0; i < result.mask.size(); ++i)
-            if (result.mask[i])
-                inliers.push_back(static_cast<int>(i));
+        maskIndices(result.mask, inliers);
         fitModelOn(data, inliers, 0, model);
     }
     result.score = c.scorer->score(data, model);

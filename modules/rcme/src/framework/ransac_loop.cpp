@@ -67,9 +67,7 @@ Model polishRejected(const TwoViewData& data, EstimatorComponents& c, Model mode
     if (!c.space->liftOn(data, mask, model, /*redecide=*/false))
         return model;
     std::vector<int> inliers;
-    for (size_t i = 0; i < mask.size(); ++i)
-        if (mask[i])
-            inliers.push_back(static_cast<int>(i));
+    maskIndices(mask, inliers);
     Model fitted = model;
     if (fitModelOn(data, inliers, kFitIterations, fitted))
         model = fitted;
@@ -308,10 +306,7 @@ private:
                 return;
             source = best->score;
             c_.scorer->classify(data_, best->model, localInliers_);
-            innerPool_.clear();
-            for (size_t i = 0; i < localInliers_.size(); ++i)
-                if (localInliers_[i])
-                    innerPool_.push_back(static_cast<int>(i));
+            maskIndices(localInliers_, innerPool_);
             if (innerPool_.size() < 2 * m)
                 return;
             for (int k = 0; k < inner.samplesPerRound; ++k) {

@@ -155,6 +155,15 @@ void writeMask(const std::vector<uchar>& mask, OutputArray out)
     Mat(static_cast<int>(mask.size()), 1, CV_8U, const_cast<uchar*>(mask.data())).copyTo(out);
 }
 
+void maskIndices(const std::vector<uchar>& mask, std::vector<int>& indices)
+{
+    indices.reserve(mask.size());
+    indices.clear();
+    for (size_t i = 0; i < mask.size(); ++i)
+        if (mask[i])
+            indices.push_back(static_cast<int>(i));
+}
+
 TwoViewData evenlySpacedSubset(const TwoViewData& data, size_t maxPoints)
 {
     TwoViewData subset = data;

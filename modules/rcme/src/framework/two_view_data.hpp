@@ -54,6 +54,10 @@ inline size_t subsetStride(size_t count, size_t maxPoints = kMaxIteratedPoints)
 //! camera and noise: the subset on which a decision about a large problem is made.
 TwoViewData evenlySpacedSubset(const TwoViewData& data, size_t maxPoints);
 
+/** The positions of the ones of `mask`, in order, into `indices` (sized for every point first, so
+that a reused buffer never allocates again). */
+void maskIndices(const std::vector<uchar>& mask, std::vector<int>& indices);
+
 /** Reads one point set as OpenCV accepts it (Nx2 1-channel, Nx1 or 1xN 2-channel; any depth;
 std::vector<Point2f/2d>). Throws StsBadArg naming `argName` when the layout is
 wrong, the set is empty, or a coordinate is not finite. */

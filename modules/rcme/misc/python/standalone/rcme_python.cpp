@@ -77,26 +77,12 @@ int depthOf(const py::dtype& dt)
 
 py::dtype dtypeOf(int depth)
 {
-    switch (depth) {
-    case CV_8U:
-        return py::dtype("uint8");
-    case CV_8S:
-        return py::dtype("int8");
-    case CV_16U:
-        return py::dtype("uint16");
-    case CV_16S:
-        return py::dtype("int16");
-    case CV_32S:
-        return py::dtype("int32");
-    case CV_32F:
-        return py::dtype("float32");
-    case CV_64F:
-        return py::dtype("float64");
-    case CV_16F:
-        return py::dtype("float16");
-    default:
-        break;
-    }
+    static const std::pair<int, const char*> kNames[] = {
+        {CV_8U, "uint8"},  {CV_8S, "int8"},     {CV_16U, "uint16"},  {CV_16S, "int16"},
+        {CV_32S, "int32"}, {CV_32F, "float32"}, {CV_64F, "float64"}, {CV_16F, "float16"}};
+    for (const auto& entry : kNames)
+        if (entry.first == depth)
+            return py::dtype(entry.second);
     CV_Error(cv::Error::StsUnsupportedFormat, "rcme: a result has an unsupported depth");
 }
 
@@ -446,6 +432,83 @@ private:
 // The enums' constants and the fields' chains, generated from the public headers.
 #include "generated_bindings.inc"
 
+//! The arrays of the forms with one camera matrix, converted in argument order.
+struct CameraInputs
+{
+    InMat p1, p2, k;
+};
+
+CameraInputs cameraInputs(const char* function, py::handle points1, py::handle points2,
+                          py::handle cameraMatrix)
+{
+    CameraInputs in;
+    in.p1 = toMat(points1, "points1", Conv::Float, function);
+    in.p2 = toMat(points2, "points2", Conv::Float, function);
+    in.k = toMat(cameraMatrix, "cameraMatrix", Conv::Float, function);
+    return in;
+}
+
+//! An array argument and its name in the signature (OpenCV's forms spell them differently).
+struct NamedArray
+{
+    py::handle object;
+    const char* name;
+};
+
+//! The arrays of the forms with two cameras and their distortion coefficients.
+struct TwoCameraInputs
+{
+    InMat p1, p2, k1, d1, k2, d2;
+};
+
+TwoCameraInputs twoCameraInputs(const char* function, py::handle points1, py::handle points2,
+                                NamedArray k1, NamedArray d1, NamedArray k2, NamedArray d2)
+{
+    TwoCameraInputs in;
+    in.p1 = toMat(points1, "points1", Conv::Float, function);
+    in.p2 = toMat(points2, "points2", Conv::Float, function);
+    in.k1 = toMat(k1.object, k1.name, Conv::Float, function);
+    in.d1 = toMat(d1.object, d1.name, Conv::Float, function);
+    in.k2 = toMat(k2.object, k2.name, Conv::Float, function);
+    in.d2 = toMat(d2.object, d2.name, Conv::Float, function);
+    return in;
+}
+
+/* The Params forms of findFundamentalMat and findEssentialMat: the inputs converted, `call`
+(points1, points2, cameraMatrix, mask, status) run without the GIL, (matrix, mask, status)
+returned. */
+template <class Call>
+py::tuple runWithParams(const char* function, py::object points1, py::object points2,
+                        py::object cameraMatrix, py::object mask, const Call& call)
+{
+    const CameraInputs in = cameraInputs(function, points1, points2, cameraMatrix);
+    OutMat outMask = toOutMat(mask);
+    cv::Mat model;
+    Status status = STATUS_SUCCESS;
+    {
+        py::gil_scoped_release nogil;
+        model = call(in.p1.mat, in.p2.mat, in.k.mat, outMask.mat, status);
+    }
+    return py::make_tuple(fromMat(model), finishOut(outMask), static_cast<int>(status));
+}
+
+//! A struct of the headers as a Python class: the default constructor, the generated fields,
+//! repr and pickling, and keyword construction when `keywordInit`.
+template <class T>
+py::class_<T> bindStruct(py::module_& m, const char* name, const char* doc, const char* initDoc,
+                         bool keywordInit)
+{
+    py::class_<T> cls(m, name, doc);
+    cls.def(py::init<>(), initDoc);
+    Fields<T> fields(cls);
+    addFields(fields);
+    if (keywordInit)
+        fields.addKeywordInit(name);
+    fields.addRepr(name);
+    fields.addPickle();
+    return cls;
+}
+
 //! A cv::UsacParams from any object with cv2.UsacParams' attributes (duck typing, so that a
 //! cv2.UsacParams from the installed cv2 works without this module depending on cv2).
 cv::UsacParams usacFromPython(const py::object& u, const char* func, const char* name)
@@ -571,6 +634,19 @@ const char* const kDocMethodFromString =
 
 } // namespace
 
+// Runs `call` (the mask's cv::Mat to write) without the GIL and returns (model or None, mask), as
+// the cv2 forms that give no status do.
+template <class Call> py::tuple modelAndMask(py::object mask, const Call& call)
+{
+    OutMat outMask = toOutMat(mask);
+    cv::Mat model;
+    {
+        py::gil_scoped_release nogil;
+        model = call(outMask.mat);
+    }
+    return py::make_tuple(fromMat(model), finishOut(outMask));
+}
+
 // Runs a drop-in findFundamentalMat overload, which returns F (empty on failure) and writes the
 // mask; returns (F or None, mask) as cv2 does.
 template <class Call>
@@ -579,13 +655,7 @@ py::tuple runFundamentalDropIn(py::object points1, py::object points2, py::objec
     const char* f = "findFundamentalMat";
     InMat p1 = toMat(points1, "points1", Conv::Float, f);
     InMat p2 = toMat(points2, "points2", Conv::Float, f);
-    OutMat outMask = toOutMat(mask);
-    cv::Mat F;
-    {
-        py::gil_scoped_release nogil;
-        F = call(p1.mat, p2.mat, outMask.mat);
-    }
-    return py::make_tuple(fromMat(F), finishOut(outMask));
+    return modelAndMask(mask, [&](cv::Mat& maskOut) { return call(p1.mat, p2.mat, maskOut); });
 }
 
 // ------------------------------------------------------------------------------------------
@@ -708,9 +778,10 @@ PYBIND11_MODULE(_rcme, m)
             m.attr(c.name) = c.value;
 
     // --- Params
-    py::class_<Params> params(m, "Params",
-                              "Parameters of the robust estimators, shaped like cv2.UsacParams.");
-    params.def(py::init<>(), "Params() -> <rcme.Params object>\n.   Every field at its default.");
+    py::class_<Params> params = bindStruct<Params>(
+        m, "Params", "Parameters of the robust estimators, shaped like cv2.UsacParams.",
+        "Params() -> <rcme.Params object>\n.   Every field at its default.",
+        /*keywordInit=*/true);
     // A static factory rather than a constructor, as in cv2.rcme: see params.hpp.
     const char* docFromUsac =
         "fromUsacParams(usacParams) -> retval\n"
@@ -727,45 +798,18 @@ PYBIND11_MODULE(_rcme, m)
     };
     params.def_static("asPublished", asPublished, py::arg("method"), docAsPublished);
     m.def("Params_asPublished", asPublished, py::arg("method"), docAsPublished);
-    Fields<Params> paramsFields(params);
-    addFields(paramsFields);
-    paramsFields.addKeywordInit("Params");
-    paramsFields.addRepr("Params");
-    paramsFields.addPickle();
 
-    // --- Report
-    py::class_<Report> report(m, "Report", "Everything an estimation produced.");
-    report.def(py::init<>(), "Report() -> <rcme.Report object>");
-    Fields<Report> reportFields(report);
-    addFields(reportFields);
-    reportFields.addRepr("Report");
-    reportFields.addPickle();
-
-    // --- SceneParams, SyntheticScene, MotionError
-    py::class_<SceneParams> sceneParams(m, "SceneParams",
-                                        "Parameters of the synthetic scene generator.");
-    sceneParams.def(py::init<>(), "SceneParams() -> <rcme.SceneParams object>");
-    Fields<SceneParams> sceneParamsFields(sceneParams);
-    addFields(sceneParamsFields);
-    sceneParamsFields.addKeywordInit("SceneParams");
-    sceneParamsFields.addRepr("SceneParams");
-    sceneParamsFields.addPickle();
-
-    py::class_<SyntheticScene> scene(m, "SyntheticScene",
-                                     "A generated two-view scene with its ground truth.");
-    scene.def(py::init<>(), "SyntheticScene() -> <rcme.SyntheticScene object>");
-    Fields<SyntheticScene> sceneFields(scene);
-    addFields(sceneFields);
-    sceneFields.addRepr("SyntheticScene");
-    sceneFields.addPickle();
-
-    py::class_<MotionError> motionError(m, "MotionError",
-                                        "Differences between an estimated and a true motion.");
-    motionError.def(py::init<>(), "MotionError() -> <rcme.MotionError object>");
-    Fields<MotionError> motionErrorFields(motionError);
-    addFields(motionErrorFields);
-    motionErrorFields.addRepr("MotionError");
-    motionErrorFields.addPickle();
+    // --- Report, SceneParams, SyntheticScene, MotionError
+    bindStruct<Report>(m, "Report", "Everything an estimation produced.",
+                       "Report() -> <rcme.Report object>", /*keywordInit=*/false);
+    bindStruct<SceneParams>(m, "SceneParams", "Parameters of the synthetic scene generator.",
+                            "SceneParams() -> <rcme.SceneParams object>", /*keywordInit=*/true);
+    bindStruct<SyntheticScene>(m, "SyntheticScene",
+                               "A generated two-view scene with its ground truth.",
+                               "SyntheticScene() -> <rcme.SyntheticScene object>",
+                               /*keywordInit=*/false);
+    bindStruct<MotionError>(m, "MotionError", "Differences between an estimated and a true motion.",
+                            "MotionError() -> <rcme.MotionError object>", /*keywordInit=*/false);
 
     // --- functions, overloads in header order (cv2 tries them in that order too)
     m.def(
@@ -784,11 +828,9 @@ PYBIND11_MODULE(_rcme, m)
         "estimateRelativeMotion",
         [](py::object points1, py::object points2, py::object cameraMatrix, const Params& p) {
             const char* f = "estimateRelativeMotion";
-            InMat p1 = toMat(points1, "points1", Conv::Float, f);
-            InMat p2 = toMat(points2, "points2", Conv::Float, f);
-            InMat k = toMat(cameraMatrix, "cameraMatrix", Conv::Float, f);
+            const CameraInputs in = cameraInputs(f, points1, points2, cameraMatrix);
             py::gil_scoped_release nogil;
-            return cv::rcme::estimateRelativeMotion(p1.mat, p2.mat, k.mat, p);
+            return cv::rcme::estimateRelativeMotion(in.p1.mat, in.p2.mat, in.k.mat, p);
         },
         py::arg("points1"), py::arg("points2"), py::arg("cameraMatrix"),
         py::arg("params") = Params(), kDocEstimate);
@@ -797,18 +839,11 @@ PYBIND11_MODULE(_rcme, m)
     // which converts to an empty array, as the C++ overload passes noArray().
     auto findFundamentalWithCamera = [](py::object points1, py::object points2,
                                         py::object cameraMatrix, const Params& p, py::object mask) {
-        const char* f = "findFundamentalMat";
-        InMat p1 = toMat(points1, "points1", Conv::Float, f);
-        InMat p2 = toMat(points2, "points2", Conv::Float, f);
-        InMat k = toMat(cameraMatrix, "cameraMatrix", Conv::Float, f);
-        OutMat outMask = toOutMat(mask);
-        cv::Mat F;
-        Status status = STATUS_SUCCESS;
-        {
-            py::gil_scoped_release nogil;
-            F = cv::rcme::findFundamentalMat(p1.mat, p2.mat, k.mat, p, outMask.mat, status);
-        }
-        return py::make_tuple(fromMat(F), finishOut(outMask), static_cast<int>(status));
+        return runWithParams(
+            "findFundamentalMat", points1, points2, cameraMatrix, mask,
+            [&](const cv::Mat& a, const cv::Mat& b, const cv::Mat& k, cv::Mat& m, Status& status) {
+                return cv::rcme::findFundamentalMat(a, b, k, p, m, status);
+            });
     };
     m.def(
         "findFundamentalMat",
@@ -865,18 +900,10 @@ PYBIND11_MODULE(_rcme, m)
         "findEssentialMat",
         [](py::object points1, py::object points2, py::object cameraMatrix, const Params& p,
            py::object mask) {
-            const char* f = "findEssentialMat";
-            InMat p1 = toMat(points1, "points1", Conv::Float, f);
-            InMat p2 = toMat(points2, "points2", Conv::Float, f);
-            InMat k = toMat(cameraMatrix, "cameraMatrix", Conv::Float, f);
-            OutMat outMask = toOutMat(mask);
-            cv::Mat E;
-            Status status = STATUS_SUCCESS;
-            {
-                py::gil_scoped_release nogil;
-                E = cv::rcme::findEssentialMat(p1.mat, p2.mat, k.mat, p, outMask.mat, status);
-            }
-            return py::make_tuple(fromMat(E), finishOut(outMask), static_cast<int>(status));
+            return runWithParams(
+                "findEssentialMat", points1, points2, cameraMatrix, mask,
+                [&](const cv::Mat& a, const cv::Mat& b, const cv::Mat& k, cv::Mat& m,
+                    Status& status) { return cv::rcme::findEssentialMat(a, b, k, p, m, status); });
         },
         py::arg("points1"), py::arg("points2"), py::arg("cameraMatrix"), py::arg("params"),
         py::arg("mask") = py::none(), kDocFindEssentialParams);
@@ -886,17 +913,11 @@ PYBIND11_MODULE(_rcme, m)
         [](py::object points1, py::object points2, py::object cameraMatrix, int method, double prob,
            double threshold, int maxIters, py::object mask) {
             const char* f = "findEssentialMat";
-            InMat p1 = toMat(points1, "points1", Conv::Float, f);
-            InMat p2 = toMat(points2, "points2", Conv::Float, f);
-            InMat k = toMat(cameraMatrix, "cameraMatrix", Conv::Float, f);
-            OutMat outMask = toOutMat(mask);
-            cv::Mat E;
-            {
-                py::gil_scoped_release nogil;
-                E = cv::rcme::findEssentialMat(p1.mat, p2.mat, k.mat, method, prob, threshold,
-                                               maxIters, outMask.mat);
-            }
-            return py::make_tuple(fromMat(E), finishOut(outMask));
+            const CameraInputs in = cameraInputs(f, points1, points2, cameraMatrix);
+            return modelAndMask(mask, [&](cv::Mat& maskOut) {
+                return cv::rcme::findEssentialMat(in.p1.mat, in.p2.mat, in.k.mat, method, prob,
+                                                  threshold, maxIters, maskOut);
+            });
         },
         py::arg("points1"), py::arg("points2"), py::arg("cameraMatrix"),
         py::arg("method") = static_cast<int>(cv::RANSAC), py::arg("prob") = 0.999,
@@ -911,14 +932,10 @@ PYBIND11_MODULE(_rcme, m)
             InMat p1 = toMat(points1, "points1", Conv::Float, f);
             InMat p2 = toMat(points2, "points2", Conv::Float, f);
             const cv::Point2d principal = toPoint2d(pp, "pp", f);
-            OutMat outMask = toOutMat(mask);
-            cv::Mat E;
-            {
-                py::gil_scoped_release nogil;
-                E = cv::rcme::findEssentialMat(p1.mat, p2.mat, focal, principal, method, prob,
-                                               threshold, maxIters, outMask.mat);
-            }
-            return py::make_tuple(fromMat(E), finishOut(outMask));
+            return modelAndMask(mask, [&](cv::Mat& maskOut) {
+                return cv::rcme::findEssentialMat(p1.mat, p2.mat, focal, principal, method, prob,
+                                                  threshold, maxIters, maskOut);
+            });
         },
         py::arg("points1"), py::arg("points2"), py::arg("focal") = 1.0,
         py::arg("pp") = py::make_tuple(0.0, 0.0), py::arg("method") = static_cast<int>(cv::RANSAC),
@@ -931,20 +948,14 @@ PYBIND11_MODULE(_rcme, m)
            py::object cameraMatrix2, py::object distCoeffs2, int method, double prob,
            double threshold, py::object mask) {
             const char* f = "findEssentialMat";
-            InMat p1 = toMat(points1, "points1", Conv::Float, f);
-            InMat p2 = toMat(points2, "points2", Conv::Float, f);
-            InMat k1 = toMat(cameraMatrix1, "cameraMatrix1", Conv::Float, f);
-            InMat d1 = toMat(distCoeffs1, "distCoeffs1", Conv::Float, f);
-            InMat k2 = toMat(cameraMatrix2, "cameraMatrix2", Conv::Float, f);
-            InMat d2 = toMat(distCoeffs2, "distCoeffs2", Conv::Float, f);
-            OutMat outMask = toOutMat(mask);
-            cv::Mat E;
-            {
-                py::gil_scoped_release nogil;
-                E = cv::rcme::findEssentialMat(p1.mat, p2.mat, k1.mat, d1.mat, k2.mat, d2.mat,
-                                               method, prob, threshold, outMask.mat);
-            }
-            return py::make_tuple(fromMat(E), finishOut(outMask));
+            const TwoCameraInputs in = twoCameraInputs(
+                f, points1, points2, {cameraMatrix1, "cameraMatrix1"}, {distCoeffs1, "distCoeffs1"},
+                {cameraMatrix2, "cameraMatrix2"}, {distCoeffs2, "distCoeffs2"});
+            return modelAndMask(mask, [&](cv::Mat& maskOut) {
+                return cv::rcme::findEssentialMat(in.p1.mat, in.p2.mat, in.k1.mat, in.d1.mat,
+                                                  in.k2.mat, in.d2.mat, method, prob, threshold,
+                                                  maskOut);
+            });
         },
         py::arg("points1"), py::arg("points2"), py::arg("cameraMatrix1"), py::arg("distCoeffs1"),
         py::arg("cameraMatrix2"), py::arg("distCoeffs2"),
@@ -958,20 +969,13 @@ PYBIND11_MODULE(_rcme, m)
            py::object params, py::object mask) {
             const char* f = "findEssentialMat";
             const cv::UsacParams usac = usacFromPython(params, f, "params");
-            InMat p1 = toMat(points1, "points1", Conv::Float, f);
-            InMat p2 = toMat(points2, "points2", Conv::Float, f);
-            InMat k1 = toMat(cameraMatrix1, "cameraMatrix1", Conv::Float, f);
-            InMat k2 = toMat(cameraMatrix2, "cameraMatrix2", Conv::Float, f);
-            InMat d1 = toMat(distCoeff1, "dist_coeff1", Conv::Float, f);
-            InMat d2 = toMat(distCoeff2, "dist_coeff2", Conv::Float, f);
-            OutMat outMask = toOutMat(mask);
-            cv::Mat E;
-            {
-                py::gil_scoped_release nogil;
-                E = cv::rcme::findEssentialMat(p1.mat, p2.mat, k1.mat, k2.mat, d1.mat, d2.mat,
-                                               outMask.mat, usac);
-            }
-            return py::make_tuple(fromMat(E), finishOut(outMask));
+            const TwoCameraInputs in = twoCameraInputs(
+                f, points1, points2, {cameraMatrix1, "cameraMatrix1"}, {distCoeff1, "dist_coeff1"},
+                {cameraMatrix2, "cameraMatrix2"}, {distCoeff2, "dist_coeff2"});
+            return modelAndMask(mask, [&](cv::Mat& maskOut) {
+                return cv::rcme::findEssentialMat(in.p1.mat, in.p2.mat, in.k1.mat, in.k2.mat,
+                                                  in.d1.mat, in.d2.mat, maskOut, usac);
+            });
         },
         py::arg("points1"), py::arg("points2"), py::arg("cameraMatrix1"), py::arg("cameraMatrix2"),
         py::arg("dist_coeff1"), py::arg("dist_coeff2"), py::arg("params"),
@@ -982,17 +986,15 @@ PYBIND11_MODULE(_rcme, m)
         [](py::object points1, py::object points2, py::object cameraMatrix, const Params& p,
            py::object E, py::object R, py::object t, py::object mask, py::object covariance) {
             const char* f = "recoverPose";
-            InMat p1 = toMat(points1, "points1", Conv::Float, f);
-            InMat p2 = toMat(points2, "points2", Conv::Float, f);
-            InMat k = toMat(cameraMatrix, "cameraMatrix", Conv::Float, f);
+            const CameraInputs in = cameraInputs(f, points1, points2, cameraMatrix);
             OutMat outE = toOutMat(E), outR = toOutMat(R), outT = toOutMat(t);
             OutMat outMask = toOutMat(mask), outCov = toOutMat(covariance);
             Status status = STATUS_SUCCESS;
             int retval = 0;
             {
                 py::gil_scoped_release nogil;
-                retval = cv::rcme::recoverPose(p1.mat, p2.mat, k.mat, outE.mat, outR.mat, outT.mat,
-                                               p, outMask.mat, status, outCov.mat);
+                retval = cv::rcme::recoverPose(in.p1.mat, in.p2.mat, in.k.mat, outE.mat, outR.mat,
+                                               outT.mat, p, outMask.mat, status, outCov.mat);
             }
             return py::make_tuple(retval, finishOut(outE), finishOut(outR), finishOut(outT),
                                   finishOut(outMask), static_cast<int>(status), finishOut(outCov));
@@ -1007,20 +1009,17 @@ PYBIND11_MODULE(_rcme, m)
            py::object cameraMatrix2, py::object distCoeffs2, py::object E, py::object R,
            py::object t, int method, double prob, double threshold, py::object mask) {
             const char* f = "recoverPose";
-            InMat p1 = toMat(points1, "points1", Conv::Float, f);
-            InMat p2 = toMat(points2, "points2", Conv::Float, f);
-            InMat k1 = toMat(cameraMatrix1, "cameraMatrix1", Conv::Float, f);
-            InMat d1 = toMat(distCoeffs1, "distCoeffs1", Conv::Float, f);
-            InMat k2 = toMat(cameraMatrix2, "cameraMatrix2", Conv::Float, f);
-            InMat d2 = toMat(distCoeffs2, "distCoeffs2", Conv::Float, f);
+            const TwoCameraInputs in = twoCameraInputs(
+                f, points1, points2, {cameraMatrix1, "cameraMatrix1"}, {distCoeffs1, "distCoeffs1"},
+                {cameraMatrix2, "cameraMatrix2"}, {distCoeffs2, "distCoeffs2"});
             OutMat outE = toOutMat(E), outR = toOutMat(R), outT = toOutMat(t);
             OutMat ioMask = toInOutMat(mask, "mask", f);
             int retval = 0;
             {
                 py::gil_scoped_release nogil;
-                retval =
-                    cv::rcme::recoverPose(p1.mat, p2.mat, k1.mat, d1.mat, k2.mat, d2.mat, outE.mat,
-                                          outR.mat, outT.mat, method, prob, threshold, ioMask.mat);
+                retval = cv::rcme::recoverPose(in.p1.mat, in.p2.mat, in.k1.mat, in.d1.mat,
+                                               in.k2.mat, in.d2.mat, outE.mat, outR.mat, outT.mat,
+                                               method, prob, threshold, ioMask.mat);
             }
             return py::make_tuple(retval, finishOut(outE), finishOut(outR), finishOut(outT),
                                   finishOut(ioMask));
@@ -1037,16 +1036,14 @@ PYBIND11_MODULE(_rcme, m)
            py::object R, py::object t, py::object mask) {
             const char* f = "recoverPose";
             InMat e = toMat(E, "E", Conv::Float, f);
-            InMat p1 = toMat(points1, "points1", Conv::Float, f);
-            InMat p2 = toMat(points2, "points2", Conv::Float, f);
-            InMat k = toMat(cameraMatrix, "cameraMatrix", Conv::Float, f);
+            const CameraInputs in = cameraInputs(f, points1, points2, cameraMatrix);
             OutMat outR = toOutMat(R), outT = toOutMat(t);
             OutMat ioMask = toInOutMat(mask, "mask", f);
             int retval = 0;
             {
                 py::gil_scoped_release nogil;
-                retval = cv::rcme::recoverPose(e.mat, p1.mat, p2.mat, k.mat, outR.mat, outT.mat,
-                                               ioMask.mat);
+                retval = cv::rcme::recoverPose(e.mat, in.p1.mat, in.p2.mat, in.k.mat, outR.mat,
+                                               outT.mat, ioMask.mat);
             }
             return py::make_tuple(retval, finishOut(outR), finishOut(outT), finishOut(ioMask));
         },
@@ -1084,16 +1081,14 @@ PYBIND11_MODULE(_rcme, m)
            py::object triangulatedPoints) {
             const char* f = "recoverPose";
             InMat e = toMat(E, "E", Conv::Float, f);
-            InMat p1 = toMat(points1, "points1", Conv::Float, f);
-            InMat p2 = toMat(points2, "points2", Conv::Float, f);
-            InMat k = toMat(cameraMatrix, "cameraMatrix", Conv::Float, f);
+            const CameraInputs in = cameraInputs(f, points1, points2, cameraMatrix);
             OutMat outR = toOutMat(R), outT = toOutMat(t), outPoints = toOutMat(triangulatedPoints);
             OutMat ioMask = toInOutMat(mask, "mask", f);
             int retval = 0;
             {
                 py::gil_scoped_release nogil;
-                retval = cv::rcme::recoverPose(e.mat, p1.mat, p2.mat, k.mat, outR.mat, outT.mat,
-                                               distanceThresh, ioMask.mat, outPoints.mat);
+                retval = cv::rcme::recoverPose(e.mat, in.p1.mat, in.p2.mat, in.k.mat, outR.mat,
+                                               outT.mat, distanceThresh, ioMask.mat, outPoints.mat);
             }
             return py::make_tuple(retval, finishOut(outR), finishOut(outT), finishOut(ioMask),
                                   finishOut(outPoints));
