@@ -21,7 +21,7 @@ import cv2
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "benchmark"))
 from methods import (OPENCV_CONFIDENCE, Budget, motion_from_f, rcme,  # noqa: E402
-                     rcme_params)
+                     rcme_methods, rcme_params)
 from corridor import scene_params  # noqa: E402
 
 
@@ -52,11 +52,7 @@ def main():
     args = ap.parse_args()
 
     threshold = Budget(args.iterations, args.sigma, 0).threshold
-    calibrated = {"rcme Standard, recoverPose": rcme.METHOD_STANDARD,
-                  "rcme RCME, recoverPose": rcme.METHOD_RCME,
-                  "rcme pRCME, recoverPose": rcme.METHOD_PRCME,
-                  "rcme MLESAC, recoverPose": rcme.METHOD_MLESAC,
-                  "rcme Cov-RANSAC, recoverPose": rcme.METHOD_COV_RANSAC}
+    calibrated = {"rcme %s, recoverPose" % name: value for name, value in rcme_methods()}
     runs = {name: ([], {}, [], []) for name in
             ["rcme Standard, F"] + list(calibrated) + ["OpenCV FM_RANSAC, F"]}
 

@@ -93,7 +93,7 @@ def print_stage_budget(components, counters):
     names = ("solver/8-point", "solver/RCME-instantiation(8-point,fit5,covariance)",
              "solver/RCME-instantiation(8-point,fit0,covariance)", "score-per-point/count",
              "score-per-point/RCME")
-    standard_key, rcme_key = [(m, "K", 500, 1000, "exact") for m in ("Standard", "RCME")]
+    standard_key, rcme_key = [(m, "K", 500, 1000, "exact") for m in ("standard", "rcme")]
     if any(name not in components for name in names) or rcme_key not in counters:
         return
     solver, fitted, unfitted, count, entropy = (components[name] for name in names)
@@ -145,25 +145,25 @@ def main():
         return calls[key]
 
     print("\nRCME against Standard, same data, exactly N = 1000, n = 500 (CPU ms):")
-    standard_k, rcme_k = get("Standard", "K", 500, 1000), get("RCME", "K", 500, 1000)
+    standard_k, rcme_k = get("standard", "K", 500, 1000), get("rcme", "K", 500, 1000)
     print(f"         Standard {standard_k:.2f} ms, RCME {rcme_k:.2f} ms (camera motion, K)")
     check("RCME / Standard (K)", rcme_k / standard_k, 1.5)
-    info("RCME / Standard without K (F)", get("RCME", "F", 500, 1000) / get("Standard", "F", 500, 1000))
+    info("RCME / Standard without K (F)", get("rcme", "F", 500, 1000) / get("standard", "F", 500, 1000))
     for model in ("K", "F"):
-        key = ("RCME-sampleFit0", model, 500, 1000, "exact")
+        key = ("rcme-sampleFit0", model, 500, 1000, "exact")
         if key in calls:
             outcome = "succeeds" if counters[key].get("success") else "FAILS on this scene"
             info(f"RCME with sampleFitIterations 0 ({outcome}) / Standard ({model})",
-                 calls[key] / get("Standard", model, 500, 1000))
+                 calls[key] / get("standard", model, 500, 1000))
     print_stage_budget(components, counters)
 
     print("\nLinear in n (exactly N = 1000): time(n = 10000) / time(n = 500):")
-    for method, model in (("Standard", "K"), ("RCME", "K"), ("Standard", "F")):
+    for method, model in (("standard", "K"), ("rcme", "K"), ("standard", "F")):
         check(f"{method} ({model})", get(method, model, 10000, 1000) / get(method, model, 500, 1000),
               25)
 
     print("\nLinear in N (exactly N): time(N = 1000) / time(N = 200):")
-    for method, model in (("Standard", "K"), ("RCME", "K"), ("Standard", "F")):
+    for method, model in (("standard", "K"), ("rcme", "K"), ("standard", "F")):
         for n in (100, 500, 2000, 10000):
             check(f"{method} ({model}), n = {n}",
                   get(method, model, n, 1000) / get(method, model, n, 200), 5 * LINEAR_NOISE)
@@ -172,7 +172,7 @@ def main():
     for n in (100, 500, 2000, 10000):
         for N in (200, 1000):
             check(f"n = {n}, N = {N}",
-                  get("Standard", "F", n, N) / get("OpenCV_FM_RANSAC", "F", n, N), 1.0)
+                  get("standard", "F", n, N) / get("OpenCV_FM_RANSAC", "F", n, N), 1.0)
 
     if parallel:
         print("\nParams.isParallel, wall-clock speed-up of 2 threads over 1 (n = 2000, N = 1000, K):")

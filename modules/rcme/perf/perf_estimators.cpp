@@ -9,6 +9,8 @@
 
 #include "perf_precomp.hpp"
 
+#include "generated/enum_tables.inc"
+
 namespace {
 
 cv::rcme::SyntheticScene corridor(int numPoints)
@@ -45,14 +47,19 @@ namespace {
 struct MethodName
 {
     cv::rcme::Method method;
-    const char* name;
+    std::string name; //!< cv::rcme::methodName, as the samples' --method
 };
 
-const MethodName kMethods[] = {{cv::rcme::METHOD_STANDARD, "Standard"},
-                               {cv::rcme::METHOD_RCME, "RCME"},
-                               {cv::rcme::METHOD_PRCME, "pRCME"},
-                               {cv::rcme::METHOD_MLESAC, "MLESAC"},
-                               {cv::rcme::METHOD_COV_RANSAC, "CovRANSAC"}};
+// Every method of the library, from the list generated from its header.
+std::vector<MethodName> allMethods()
+{
+    std::vector<MethodName> methods;
+#define RCME_PERF_METHOD(value, name)                                                              \
+    methods.push_back({cv::rcme::value, cv::rcme::methodName(cv::rcme::value)});
+    RCME_METHOD_VALUES(RCME_PERF_METHOD)
+#undef RCME_PERF_METHOD
+    return methods;
+}
 
 // Times estimateRelativeMotion on the scene. The counters show the last report next to the time,
 // so that a faster call is visibly not a failed one; "ransacIterations" is named apart from Google
@@ -119,7 +126,7 @@ bool registerCalls()
 {
     const int pointCounts[] = {100, 500, 2000, 10000};
     const int iterationCounts[] = {200, 1000};
-    for (const MethodName& m : kMethods)
+    for (const MethodName& m : allMethods())
         for (bool calibrated : {true, false})
             for (int n : pointCounts)
                 for (int N : iterationCounts)
@@ -130,22 +137,23 @@ bool registerCalls()
                         if (!grid && n != 500)
                             continue;
                         const std::string name =
-                            cv::format("call/%s/%s/n:%d/N:%d/%s", m.name, calibrated ? "K" : "F", n,
-                                       N, exact ? "exact" : "adaptive");
+                            cv::format("call/%s/%s/n:%d/N:%d/%s", m.name.c_str(),
+                                       calibrated ? "K" : "F", n, N, exact ? "exact" : "adaptive");
                         benchmark::RegisterBenchmark(name.c_str(), runCall, m.method, n, N, exact,
                                                      calibrated)
                             ->Unit(benchmark::kMillisecond);
                     }
     for (bool calibrated : {true, false})
         benchmark::RegisterBenchmark(
-            cv::format("call/RCME-sampleFit0/%s/n:500/N:1000/exact", calibrated ? "K" : "F")
+            cv::format("call/rcme-sampleFit0/%s/n:500/N:1000/exact", calibrated ? "K" : "F")
                 .c_str(),
             runRcmeWithoutSampleFit, 500, 1000, calibrated)
             ->Unit(benchmark::kMillisecond);
-    for (const MethodName& m : kMethods)
+    for (const MethodName& m : allMethods())
         for (int threads : {1, 2})
             benchmark::RegisterBenchmark(
-                cv::format("parallel/%s/K/n:2000/N:1000/exact/threads:%d", m.name, threads).c_str(),
+                cv::format("parallel/%s/K/n:2000/N:1000/exact/threads:%d", m.name.c_str(), threads)
+                    .c_str(),
                 runParallel, m.method, 2000, threads)
                 ->Unit(benchmark::kMillisecond)
                 ->UseRealTime();
