@@ -18,7 +18,7 @@ Params::Params()
       alpha(0.05), entropyThreshold(1.27), inlierRatioFactor(0.9), priorInlierRatio(0.0),
       consistencyDof(1), sampleFitIterations(5), sampleLeverage(false),
       earlyTerminationEntropy(0.0), localOptimization(true), degeneracyTest(true),
-      ambiguityMargin(2.0), maxRotationStdDeg(2.0), maxTranslationStdDeg(6.0), isParallel(false),
+      ambiguityMargin(2.0), maxRotationStdDeg(4.0), maxTranslationStdDeg(8.0), isParallel(false),
       timeBudget(0.0)
 {
 }

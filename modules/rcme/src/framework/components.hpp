@@ -152,14 +152,19 @@ struct EstimatorComponents
     std::unique_ptr<Refiner> refiner; //!< null when refinement is off
     //! Refits new candidates on their inliers (LO-RANSAC); null when local optimisation is off.
     std::unique_ptr<Refiner> localOptimizer;
-    /** LO-RANSAC's inner sampling, for a loop that ends short of its confidence bound: minimal
-    samples drawn from the inliers of the best candidate (ransac_loop.cpp). */
+    /** LO-RANSAC's inner sampling, for a loop whose best candidate's inlier ratio is too low for
+    its iteration budget: minimal samples drawn from the inliers of the best candidate
+    (ransac_loop.cpp). */
     struct InnerSampling
     {
         int samplesPerRound = 0; //!< 0: off
-        //! Params::confidence and cleanSampleSuccessRate: the bound the loop's samples are held to.
+        //! It runs when maxIterations samples fall short of log(1 - confidence) /
+        //! log(1 - successRate w^m) for the best candidate's inlier ratio w (Params::confidence,
+        //! Params::maxIterations, a success rate of clean samples at most Params'
+        //! cleanSampleSuccessRate).
         double confidence = 0.99;
-        double cleanSampleSuccessRate = 1.0;
+        double successRate = 1.0;
+        int maxIterations = 0;
         uint64_t seed = 0; //!< Params::randomGeneratorState
     } innerSampling;
     //! Evaluate hypotheses on several threads (Params::isParallel); the result is the same.

@@ -268,25 +268,27 @@ private:
         }
     }
 
-    // Whether the loop drew fewer samples than the confidence bound asks for the inlier ratio of
-    // `best` (the loop stopped at Params::maxIterations, or ran exactly that many).
-    bool fellShortOfTheBound(const CandidateSet::Candidate& best, int iterations) const
+    // Whether Params::maxIterations uniform samples fall short of the confidence bound for the
+    // inlier ratio of `best`, at inner sampling's clean-sample success rate: a ratio that low is
+    // where a loop selects a wrong motion, adaptive or not.
+    bool budgetFallsShort(const CandidateSet::Candidate& best) const
     {
         const EstimatorComponents::InnerSampling& inner = c_.innerSampling;
         const double inlierRatio = static_cast<double>(best.score.inlierCount) / data_.size();
         const double cleanSample = std::pow(inlierRatio, static_cast<double>(innerDraw_.size()));
-        return samplesForConfidence(inner.confidence, inner.cleanSampleSuccessRate * cleanSample) >
-               iterations;
+        return samplesForConfidence(inner.confidence, inner.successRate * cleanSample) >
+               inner.maxIterations;
     }
 
-    /* LO-RANSAC's inner sampling (Chum et al. 2003), with minimal samples, after a loop that fell
-    short of its confidence bound (a low inlier ratio, or a solver whose clean samples often fit
-    a wrong model): minimal samples drawn from the best candidate's inliers are committed like the
-    loop's, in rounds, while they improve the best and the bound is still unmet. A best of a
-    wrong motion still holds mostly true inliers, so its inner samples are mostly clean where the
-    loop's were not (w^m); minimal ones, because a fit to many of its inliers stays in its basin.
-    A loop that met its bound is left as it is. The draws depend only on (seed, draw count); SPRT
-    does not see them, so its state is that of the loop. */
+    /* LO-RANSAC's inner sampling (Chum et al. 2003), with minimal samples, after a loop whose
+    best candidate has an inlier ratio too low for its iteration budget (budgetFallsShort: the
+    loop's clean samples are few, and those of a narrow view often fit a wrong motion): minimal
+    samples drawn from the best candidate's inliers are committed like the loop's, in rounds,
+    while they improve the best and its inlier ratio stays that low. A best of a wrong motion
+    still holds mostly true inliers, so its inner samples are mostly clean where the loop's were
+    not (w^m); minimal ones, because a fit to many of its inliers stays in its basin. Any other
+    loop is left as it is. The draws depend only on (seed, draw count); SPRT does not see them,
+    so its state is that of the loop. */
     void sampleInsideBest(CandidateSet& candidates, RansacResult& result)
     {
         constexpr int kMaxRounds = 4;
@@ -302,7 +304,7 @@ private:
                 return;
             const CandidateSet::Candidate* best = candidates.best(*c_.scorer);
             if (!best || (round > 0 && !best->score.isBetterThan(source)) ||
-                !fellShortOfTheBound(*best, result.iterations))
+                !budgetFallsShort(*best))
                 return;
             source = best->score;
             c_.scorer->classify(data_, best->model, localInliers_);

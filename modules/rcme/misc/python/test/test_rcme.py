@@ -223,7 +223,7 @@ class _RcmeSuite:
         self.assertIs(p.isParallel, False)
         self.assertIs(p.localOptimization, True)
         self.assertEqual((p.ambiguityMargin, p.maxRotationStdDeg, p.maxTranslationStdDeg),
-                         (2.0, 2.0, 6.0))
+                         (2.0, 4.0, 8.0))
 
     def test_params_as_published(self):
         b = self.b
