@@ -6,7 +6,7 @@
 
 // The post-loop comparison of the final inliers with a homography and a rotation
 // (components/homography_comparison.cpp), and the motions of a homography; used by the
-// degeneracy test there and by the motion space (framework/motion_space.cpp).
+// degeneracy test there and by the motion space (components/motion_space.cpp).
 
 #include "framework/model.hpp"
 

@@ -5,7 +5,7 @@
 #define OPENCV_RCME_COMPONENTS_MOTION_SUPPORT_HPP
 
 // How well a motion explains the points when cheirality counts: shared by the comparisons of
-// distinct motions after the loop (a planar scene's, framework/motion_space.cpp; the ambiguity
+// distinct motions after the loop (a planar scene's, components/motion_space.cpp; the ambiguity
 // test's, components/ambiguity_test.cpp).
 
 #include "framework/model.hpp"
