@@ -5,8 +5,9 @@
 #define OPENCV_RCME_FRAMEWORK_MODEL_SPACE_HPP
 
 // What an estimate is, chosen once per problem by the factory: a fundamental matrix (no camera
-// matrix: 7 DoF) or a camera motion (with K: 5 DoF). The loop, the post-loop components and the
-// public functions ask the space; none of them branches on the camera matrix.
+// matrix: 7 DoF) or a camera motion (with K: 5 DoF). The loop and the post-loop components ask the
+// space; none of them branches on the camera matrix (the public functions write out what the
+// model holds: F, and its motion when the space made one).
 
 #include "framework/components.hpp"
 

@@ -215,13 +215,7 @@ private:
         forEachIteration(count, [&](Lane& lane, int k) {
             IterationSlot& slot = slots_[static_cast<size_t>(k)];
             c_.sampler->generateSample(firstIteration + k, slot.sample);
-            slot.solutions = lane.solver->estimate(data_, slot.sample, slot.models);
-            slot.pointsChecked = 0;
-            for (size_t h = 0; h < slot.models.size(); ++h) {
-                slot.alive[h] = passes(lane.verifiers, slot, h);
-                if (slot.alive[h] && !sequential)
-                    slot.scores[h] = lane.scorer->evaluate(data_, slot.models[h]);
-            }
+            solveAndVerify(lane, slot, /*score=*/!sequential);
         });
         if (!sequential)
             return;
@@ -316,15 +310,22 @@ private:
                 drawDistinct(state, static_cast<uint32_t>(innerPool_.size()), 0, innerDraw_);
                 for (size_t j = 0; j < m; ++j)
                     slot.sample[j] = innerPool_[static_cast<size_t>(innerDraw_[j])];
-                slot.solutions = lane.solver->estimate(data_, slot.sample, slot.models);
-                slot.pointsChecked = 0;
-                for (size_t h = 0; h < slot.models.size(); ++h) {
-                    slot.alive[h] = passes(lane.verifiers, slot, h);
-                    if (slot.alive[h])
-                        slot.scores[h] = lane.scorer->evaluate(data_, slot.models[h]);
-                }
+                solveAndVerify(lane, slot, /*score=*/true);
                 commit(slot, candidates, result);
             }
+        }
+    }
+
+    // The hypotheses of slot.sample, through the lane's verifiers (those before the first
+    // sequential one) and, with `score`, evaluated by its scorer.
+    void solveAndVerify(Lane& lane, IterationSlot& slot, bool score)
+    {
+        slot.solutions = lane.solver->estimate(data_, slot.sample, slot.models);
+        slot.pointsChecked = 0;
+        for (size_t h = 0; h < slot.models.size(); ++h) {
+            slot.alive[h] = passes(lane.verifiers, slot, h);
+            if (slot.alive[h] && score)
+                slot.scores[h] = lane.scorer->evaluate(data_, slot.models[h]);
         }
     }
 
