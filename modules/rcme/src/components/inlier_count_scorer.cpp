@@ -27,12 +27,20 @@ public:
 
     Score evaluate(const TwoViewData& data, const Model& model) override
     {
-        const int count =
-            countInSampsonBand(model.F, data.points1, data.points2, thresholdSquared_);
-        Score score;
-        score.inlierCount = count;
-        score.value = -count;
-        score.isCandidate = count >= minimalSupport_;
+        return scoreOf(countInSampsonBand(model.F, data.points1, data.points2, thresholdSquared_));
+    }
+
+    // The score is the count, so a hypothesis that cannot reach the count that matters cannot
+    // become the best candidate: most bad hypotheses stop after a fraction of the points.
+    Score evaluateUpTo(const TwoViewData& data, const Model& model, int inliersThatMatter,
+                       int& pointsRead) override
+    {
+        size_t read = 0;
+        Score score = scoreOf(countInSampsonBandReaching(
+            model.F, data.points1, data.points2, thresholdSquared_, inliersThatMatter, read));
+        pointsRead = static_cast<int>(read);
+        if (read < data.points1.size())
+            score.isCandidate = false;
         return score;
     }
 
@@ -48,6 +56,15 @@ public:
     }
 
 private:
+    Score scoreOf(int count) const
+    {
+        Score score;
+        score.inlierCount = count;
+        score.value = -count;
+        score.isCandidate = count >= minimalSupport_;
+        return score;
+    }
+
     double thresholdSquared_;
     int minimalSupport_ = 0;
 };

@@ -20,6 +20,11 @@ RivalMotions::RivalMotions(int capacity) : capacity_(static_cast<size_t>(std::ma
     samplePoints2_.reserve(8);
 }
 
+int RivalMotions::leastSupportConsidered() const
+{
+    return static_cast<int>(std::ceil(kSupportShare * mostInliers_));
+}
+
 void RivalMotions::offer(const TwoViewData& data, const std::vector<int>& sample,
                          const Model& model, const Score& score)
 {

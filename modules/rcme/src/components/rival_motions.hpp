@@ -33,6 +33,8 @@ public:
     void offer(const TwoViewData& data, const std::vector<int>& sample, const Model& model,
                const Score& score);
 
+    //! The least inlier count offer() still considers (half the best offered so far).
+    int leastSupportConsidered() const;
     //! One per distinct motion seen, in no particular order.
     const std::vector<Rival>& rivals() const { return rivals_; }
 

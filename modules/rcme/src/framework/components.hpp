@@ -75,6 +75,20 @@ public:
     virtual ~Scorer() = default;
     //! The score of `model` before the run-wide tests; uses only this scorer's buffers.
     virtual Score evaluate(const TwoViewData& data, const Model& model) = 0;
+    /** evaluate() for the loop's hypotheses, which matter to the run only from
+    `inliersThatMatter` inliers on (HypothesisSearch: a new most-supported hypothesis, or a rival
+    within the ambiguity test's share of the best). A scorer whose candidates are ranked by their
+    inlier count alone may stop reading points once that count is out of reach (early bail-out,
+    as USAC's and COLMAP's): it then returns the count so far, below `inliersThatMatter`, and no
+    candidate, and the run is the same as with every point read. `pointsRead` receives the
+    number of points read. By default every point is read. */
+    virtual Score evaluateUpTo(const TwoViewData& data, const Model& model, int inliersThatMatter,
+                               int& pointsRead)
+    {
+        (void)inliersThatMatter;
+        pointsRead = data.size();
+        return evaluate(data, model);
+    }
     //! Records an evaluated score in the run so far and completes `score.isCandidate`.
     virtual void commit(Score& score) { (void)score; }
     //! evaluate() then commit(): the score of `model` in a sequential run.

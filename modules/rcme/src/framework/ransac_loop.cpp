@@ -91,7 +91,8 @@ struct IterationSlot
     std::vector<Model> models;
     std::vector<uchar> alive; //!< passed the verifiers so far
     std::vector<Score> scores;
-    long long pointsChecked = 0; //!< by the verifiers, over this iteration's hypotheses
+    //! Residuals evaluated by the verifiers and the scorer, over this iteration's hypotheses.
+    long long pointsRead = 0;
 };
 
 // The components one thread evaluates hypotheses with: the loop's own for the first lane, copies
@@ -110,8 +111,10 @@ struct Lane
 solve, verify, Scorer::evaluate; on several threads when parallel), sequential verifiers (SPRT)
 in iteration order between the two parallel steps; then the batch is committed in iteration order
 on one thread: run-wide tests (Scorer::commit), candidate set, local optimisation, iteration
-bound. Evaluation reads no state of the run, so the result is that of a sequential run whatever
-the batch size and thread count (a sequential run is batches of one). Iterations beyond a bound
+bound. Evaluation reads no state of the run but the inlier count that matters, taken before the
+batch (a scorer that stops below it changes nothing the run would keep), so the result is that
+of a sequential run whatever the batch size and thread count (a sequential run is batches of
+one). Iterations beyond a bound
 lowered inside a batch are evaluated but never committed. Every buffer is sized here: the loop
 itself does not allocate. */
 class HypothesisSearch
@@ -165,6 +168,7 @@ public:
 
     void run(CandidateSet& candidates, RansacResult& result)
     {
+        result_ = &result;
         int iteration = 0;
         while (iteration < c_.termination->iterationBound()) {
             // Checked per batch (one iteration when sequential): a clock read is cheap next to
@@ -209,9 +213,22 @@ private:
             laneCount);
     }
 
+    /* The least inlier count at which a hypothesis changes the run: a new most-supported
+    hypothesis (Scorer::evaluateUpTo: a scorer ranking by count has no better candidate below it),
+    or a rival the ambiguity test would keep. Taken before a batch is evaluated; it only grows as
+    the batch is committed, so a hypothesis below it then stays below it. */
+    int inliersThatMatter() const
+    {
+        int least = result_->mostSupportedInliers + 1;
+        if (rivals_)
+            least = std::min(least, rivals_->leastSupportConsidered());
+        return least;
+    }
+
     void evaluate(int firstIteration, int count)
     {
         const bool sequential = !sequentialVerifiers_.empty();
+        inliersThatMatter_ = inliersThatMatter();
         forEachIteration(count, [&](Lane& lane, int k) {
             IterationSlot& slot = slots_[static_cast<size_t>(k)];
             c_.sampler->generateSample(firstIteration + k, slot.sample);
@@ -228,7 +245,7 @@ private:
             IterationSlot& slot = slots_[static_cast<size_t>(k)];
             for (size_t h = 0; h < slot.models.size(); ++h)
                 if (slot.alive[h])
-                    slot.scores[h] = lane.scorer->evaluate(data_, slot.models[h]);
+                    scoreHypothesis(lane, slot, h);
         });
     }
 
@@ -239,11 +256,10 @@ private:
             return;
         }
         result.hypotheses += static_cast<long long>(slot.models.size());
-        pointsEvaluated_ += slot.pointsChecked;
+        pointsEvaluated_ += slot.pointsRead;
         for (size_t h = 0; h < slot.models.size(); ++h) {
             if (!slot.alive[h])
                 continue;
-            pointsEvaluated_ += data_.size(); // scored on every point
             Score& score = slot.scores[h];
             c_.scorer->commit(score);
             const Model& model = slot.models[h];
@@ -310,6 +326,7 @@ private:
                 drawDistinct(state, static_cast<uint32_t>(innerPool_.size()), 0, innerDraw_);
                 for (size_t j = 0; j < m; ++j)
                     slot.sample[j] = innerPool_[static_cast<size_t>(innerDraw_[j])];
+                inliersThatMatter_ = inliersThatMatter();
                 solveAndVerify(lane, slot, /*score=*/true);
                 commit(slot, candidates, result);
             }
@@ -321,12 +338,20 @@ private:
     void solveAndVerify(Lane& lane, IterationSlot& slot, bool score)
     {
         slot.solutions = lane.solver->estimate(data_, slot.sample, slot.models);
-        slot.pointsChecked = 0;
+        slot.pointsRead = 0;
         for (size_t h = 0; h < slot.models.size(); ++h) {
             slot.alive[h] = passes(lane.verifiers, slot, h);
             if (slot.alive[h] && score)
-                slot.scores[h] = lane.scorer->evaluate(data_, slot.models[h]);
+                scoreHypothesis(lane, slot, h);
         }
+    }
+
+    void scoreHypothesis(Lane& lane, IterationSlot& slot, size_t h) const
+    {
+        int pointsRead = 0;
+        slot.scores[h] =
+            lane.scorer->evaluateUpTo(data_, slot.models[h], inliersThatMatter_, pointsRead);
+        slot.pointsRead += pointsRead;
     }
 
     // The points a verifier checks are counted per slot, not read from the verifiers at the end:
@@ -336,7 +361,7 @@ private:
         for (ModelVerifier* verifier : verifiers) {
             const long long checkedBefore = verifier->pointsChecked();
             const bool isGood = verifier->isModelGood(data_, slot.sample, slot.models[h]);
-            slot.pointsChecked += verifier->pointsChecked() - checkedBefore;
+            slot.pointsRead += verifier->pointsChecked() - checkedBefore;
             if (!isGood)
                 return false;
         }
@@ -355,7 +380,9 @@ private:
     std::vector<int> innerDraw_;                      //!< an inner sample, as pool positions
     int innerDrawn_ = 0;                              //!< inner samples drawn so far
     std::unique_ptr<RivalMotions> rivals_;            //!< with the ambiguity test only
-    long long pointsEvaluated_ = 0; //!< residuals evaluated by verification and scoring
+    long long pointsEvaluated_ = 0;  //!< residuals evaluated by verification and scoring
+    RansacResult* result_ = nullptr; //!< the run's result, while run() is under way
+    int inliersThatMatter_ = 0;      //!< inliersThatMatter() before the batch being evaluated
 };
 
 } // namespace

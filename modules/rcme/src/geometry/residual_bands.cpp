@@ -21,15 +21,23 @@ namespace {
 #else
 #define RCME_VECTOR_CLONES
 #endif
+#if defined(__GNUC__)
+#define RCME_ALWAYS_INLINE inline __attribute__((always_inline))
+#else
+#define RCME_ALWAYS_INLINE inline
+#endif
 
+// The points [begin, end) of a set; inlined into each clone of the loops below, so that it is
+// compiled for AVX2 in theirs.
 template <bool WriteMask>
-RCME_VECTOR_CLONES int bandLoop(const double* f, const double* a, const double* b, size_t n,
-                                double thresholdSquared, uchar* mask)
+RCME_ALWAYS_INLINE long long bandBlock(const double* f, const double* a, const double* b,
+                                       size_t begin, size_t end, double thresholdSquared,
+                                       uchar* mask)
 {
     const double f00 = f[0], f01 = f[1], f02 = f[2], f10 = f[3], f11 = f[4], f12 = f[5];
     const double f20 = f[6], f21 = f[7], f22 = f[8];
     long long count = 0;
-    for (size_t i = 0; i < n; ++i) {
+    for (size_t i = begin; i < end; ++i) {
         const double x1 = a[2 * i], y1 = a[2 * i + 1], x2 = b[2 * i], y2 = b[2 * i + 1];
         const double l0 = f00 * x1 + f01 * y1 + f02; // F x1
         const double l1 = f10 * x1 + f11 * y1 + f12;
@@ -44,6 +52,34 @@ RCME_VECTOR_CLONES int bandLoop(const double* f, const double* a, const double* 
             mask[i] = within;
         count += within;
     }
+    return count;
+}
+
+template <bool WriteMask>
+RCME_VECTOR_CLONES int bandLoop(const double* f, const double* a, const double* b, size_t n,
+                                double thresholdSquared, uchar* mask)
+{
+    return static_cast<int>(bandBlock<WriteMask>(f, a, b, 0, n, thresholdSquared, mask));
+}
+
+// Blocks long enough for the vector loop to run at full speed, short enough that a hypothesis far
+// below the needed count stops within a few per cent of a real pair's points.
+constexpr size_t kBailOutBlock = 32;
+
+RCME_VECTOR_CLONES int bandLoopReaching(const double* f, const double* a, const double* b, size_t n,
+                                        double thresholdSquared, long long needed,
+                                        size_t& pointsRead)
+{
+    long long count = 0;
+    size_t begin = 0;
+    while (begin < n) {
+        const size_t end = std::min(n, begin + kBailOutBlock);
+        count += bandBlock<false>(f, a, b, begin, end, thresholdSquared, nullptr);
+        begin = end;
+        if (count + static_cast<long long>(n - end) < needed)
+            break;
+    }
+    pointsRead = begin;
     return static_cast<int>(count);
 }
 
@@ -61,6 +97,20 @@ int countInSampsonBand(const Eigen::Matrix3d& F, const Eigen::Vector2d* points1,
     const double* b = points2->data();
     return mask ? bandLoop<true>(f.data(), a, b, count, thresholdSquared, mask)
                 : bandLoop<false>(f.data(), a, b, count, thresholdSquared, nullptr);
+}
+
+int countInSampsonBandReaching(const Eigen::Matrix3d& F,
+                               const std::vector<Eigen::Vector2d>& points1,
+                               const std::vector<Eigen::Vector2d>& points2, double thresholdSquared,
+                               int needed, size_t& pointsRead)
+{
+    CV_DbgAssert(points1.size() == points2.size());
+    pointsRead = 0;
+    if (points1.empty())
+        return 0;
+    const Eigen::Matrix<double, 3, 3, Eigen::RowMajor> f = F;
+    return bandLoopReaching(f.data(), points1.data()->data(), points2.data()->data(),
+                            points1.size(), thresholdSquared, needed, pointsRead);
 }
 
 int countInSampsonBand(const Eigen::Matrix3d& F, const std::vector<Eigen::Vector2d>& points1,

@@ -24,6 +24,15 @@ int countInSampsonBand(const Eigen::Matrix3d& F, const Eigen::Vector2d* points1,
                        const Eigen::Vector2d* points2, size_t count, double thresholdSquared,
                        uchar* mask = nullptr);
 
+/** countInSampsonBand for a hypothesis that only matters from `needed` inliers on (early
+bail-out): it stops once the points left cannot bring the count to `needed`, checking after each
+block of a few dozen points, and then returns the count so far, below `needed`; otherwise the
+exact count. `pointsRead` receives the number of points it read. */
+int countInSampsonBandReaching(const Eigen::Matrix3d& F,
+                               const std::vector<Eigen::Vector2d>& points1,
+                               const std::vector<Eigen::Vector2d>& points2, double thresholdSquared,
+                               int needed, size_t& pointsRead);
+
 } // namespace detail
 } // namespace rcme
 } // namespace cv

@@ -288,8 +288,12 @@ struct CV_EXPORTS_W_SIMPLE Report
     CV_PROP_RW int iterations;  //!< samples drawn by the loop (not local optimisation's inner ones)
     /** Mean number of correspondences whose residual was evaluated per hypothesis, in
     verification and scoring: the number of points for methods that score every hypothesis on
-    all of them, fewer with Cov-RANSAC's SPRT, which rejects bad hypotheses after a few points.
-    NaN when no hypothesis was instantiated. */
+    all of them, fewer with SPRT (Params::verification; always with Cov-RANSAC), which rejects
+    bad hypotheses after a few points, and with METHOD_STANDARD, whose inlier count stops once a
+    hypothesis cannot beat the best one (early bail-out, which changes no result). With
+    isParallel hypotheses are evaluated in batches before the best one of the batch is known, so
+    this can be higher than in a sequential run (the same for every thread count). NaN when no
+    hypothesis was instantiated. */
     CV_PROP_RW double pointsPerHypothesis;
     CV_PROP_RW double meanEntropy; //!< RCME's mean inlier entropy psi (nats), NaN for other methods
     /** 5x5 covariance of the motion in the tangent space (rotation increment omega, rad, then

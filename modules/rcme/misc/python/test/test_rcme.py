@@ -590,8 +590,9 @@ class _RcmeSuite:
         self.assertValidMask(rep.mask, n)
         self.assertEqual(rep.inlierCount, int(rep.mask.sum()))
         self.assertGreaterEqual(rep.iterations, 1)
-        # Standard scores every hypothesis on every point
-        self.assertAlmostEqual(rep.pointsPerHypothesis, n)
+        # Standard's count stops once a hypothesis cannot beat the best one
+        self.assertLessEqual(rep.pointsPerHypothesis, n)
+        self.assertGreater(rep.pointsPerHypothesis, 0.1 * n)
         self.assertGreaterEqual(rep.timeSeconds, 0.0)
         self.assertTrue(np.isnan(rep.meanEntropy))  # only RCME computes it
         for name in ("rejectedF", "rejectedR", "rejectedT"):  # only without success
