@@ -53,9 +53,8 @@ public:
                 !areDistinctMotions(rival.model, result.model))
                 continue;
             Model refitted = rival.model;
-            if (refitOnOwnPoints(fitData, refitted).support <= 0)
+            if (refitOnOwnPoints(fitData, refitted, within, inFront).support <= 0)
                 continue;
-            motionSupport(fitData, refitted, within, inFront);
             if (recoverMotion(fitData, within, refitted) &&
                 areDistinctMotions(refitted, result.model)) {
                 motions.push_back(refitted);

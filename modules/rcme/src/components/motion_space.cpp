@@ -63,9 +63,10 @@ void resolvePlanarMotion(const TwoViewData& data, EstimatorComponents& c, const 
     std::vector<Model> motions = homographyMotions(data, H);
     motions.insert(motions.begin(), result.model);
     std::vector<MotionSupport> fits(motions.size());
+    std::vector<uchar> within, inFront;
     size_t best = 0;
     for (size_t m = 0; m < motions.size(); ++m) {
-        fits[m] = refitOnOwnPoints(data, motions[m]);
+        fits[m] = refitOnOwnPoints(data, motions[m], within, inFront);
         if (fits[m].cost < fits[best].cost)
             best = m;
     }

@@ -10,21 +10,35 @@ namespace cv {
 namespace rcme {
 namespace detail {
 
+namespace {
+
+// Marks the points within the threshold of F; returns their squared Sampson distances.
+std::vector<double> markWithinBand(const TwoViewData& data, const Eigen::Matrix3d& F,
+                                   std::vector<uchar>& within)
+{
+    const double thresholdSquared = data.threshold * data.threshold;
+    std::vector<double> distancesSquared(data.points1.size());
+    within.resize(data.points1.size());
+    for (size_t i = 0; i < within.size(); ++i) {
+        distancesSquared[i] = sampsonDistanceSquared(F, data.points1[i], data.points2[i]);
+        within[i] = distancesSquared[i] <= thresholdSquared;
+    }
+    return distancesSquared;
+}
+
+} // namespace
+
 MotionSupport motionSupport(const TwoViewData& data, const Model& model, std::vector<uchar>& within,
                             std::vector<uchar>& inFront)
 {
     const double thresholdSquared = data.threshold * data.threshold;
-    within.resize(data.points1.size());
-    for (size_t i = 0; i < within.size(); ++i)
-        within[i] =
-            sampsonDistanceSquared(model.F, data.points1[i], data.points2[i]) <= thresholdSquared;
+    const std::vector<double> distancesSquared = markWithinBand(data, model.F, within);
     MotionSupport fit;
     fit.support = countPointsInFront(model.R, model.t, data.points1, data.points2, data.Kinv,
                                      &within, &inFront);
     fit.cost = 0.0;
     for (size_t i = 0; i < within.size(); ++i)
-        fit.cost += inFront[i] ? sampsonDistanceSquared(model.F, data.points1[i], data.points2[i])
-                               : thresholdSquared;
+        fit.cost += inFront[i] ? distancesSquared[i] : thresholdSquared;
     return fit;
 }
 
@@ -38,13 +52,13 @@ double truncatedCost(const TwoViewData& data, const Eigen::Matrix3d& F)
     return cost;
 }
 
-MotionSupport refitOnOwnPoints(const TwoViewData& data, Model& motion)
+MotionSupport refitOnOwnPoints(const TwoViewData& data, Model& motion, std::vector<uchar>& within,
+                               std::vector<uchar>& inFront)
 {
     constexpr int kFitIterations = 20, kRounds = 2;
-    std::vector<uchar> within, inFront;
     std::vector<int> inliers;
     for (int round = 0; round < kRounds; ++round) {
-        motionSupport(data, motion, within, inFront);
+        markWithinBand(data, motion.F, within); // a round fits the band's points, in front or not
         maskIndices(within, inliers);
         Model fitted = motion;
         if (fitModelOn(data, inliers, kFitIterations, fitted))

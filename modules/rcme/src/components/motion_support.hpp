@@ -34,10 +34,12 @@ MotionSupport motionSupport(const TwoViewData& data, const Model& model, std::ve
 //! MSAC's cost of F: each point's squared Sampson distance, at most the squared threshold.
 double truncatedCost(const TwoViewData& data, const Eigen::Matrix3d& F);
 
-/** Refits a motion on the points within its own band, twice, and returns its fit. Not on the
-selected model's inliers: those pull every other motion towards the selected one (on a plane the
-selected F is one of a family). */
-MotionSupport refitOnOwnPoints(const TwoViewData& data, Model& motion);
+/** Refits a motion on the points within its own band, twice, and returns its fit, `within` and
+`inFront` as motionSupport leaves them for the refitted motion. Not on the selected model's
+inliers: those pull every other motion towards the selected one (on a plane the selected F is one
+of a family). */
+MotionSupport refitOnOwnPoints(const TwoViewData& data, Model& motion, std::vector<uchar>& within,
+                               std::vector<uchar>& inFront);
 
 } // namespace detail
 } // namespace rcme
