@@ -336,6 +336,49 @@ double expectSprtKeepsTruthAndRejectsBad(const TwoViewData& data, Model truth, M
     return static_cast<double>(sprt->pointsChecked()) / kBadTrials;
 }
 
+TEST(Rcme_Boxes, propagated_variances_of_a_block_equal_those_of_one_point)
+{
+    // The scorers' vectorized loop against the one-point form the consistency test and SPRT use:
+    // the same numbers to the bit, on a motion's covariance (5 DoF) and on an F's (7 DoF), with a
+    // point at the epipoles (|J| = 0: infinitely far, the noise's variance).
+    const SyntheticScene s = scene(SCENE_GENERIC, 8, 0.5);
+    for (bool calibrated : {true, false}) {
+        TwoViewData data = sceneData(s, calibrated, false);
+        Model model = trueMotion(s, sceneData(s, true, false));
+        if (!calibrated)
+            model.hasMotion = false;
+        std::vector<int> inliers;
+        for (int i = 0; i < 40; ++i)
+            inliers.push_back(i);
+        ASSERT_TRUE(fitModelOn(data, inliers, 0, model));
+        ASSERT_EQ(model.uncertaintyDof, calibrated ? 5 : 7);
+        if (!calibrated) {
+            // Forward motion with the epipoles at the origin, where F x1 and F^T x2 vanish
+            // exactly; the covariance is the fit's.
+            model.F << 0, -1, 0, 1, 0, 0, 0, 0, 0;
+            data.points1.emplace_back(0, 0);
+            data.points2.emplace_back(0, 0);
+        }
+        const ResidualUncertainty uncertainty(model, 1.3);
+        const size_t n = data.points1.size();
+        std::vector<double> distancesSquared(n), variances(n);
+        uncertainty.evaluate(data.points1.data(), data.points2.data(), n, distancesSquared.data(),
+                             variances.data());
+        for (size_t i = 0; i < n; ++i) {
+            double distanceSquared = 0, variance = 0;
+            uncertainty.evaluate(data.points1[i], data.points2[i], false, distanceSquared,
+                                 variance);
+            EXPECT_EQ(distancesSquared[i], distanceSquared) << i << " K " << calibrated;
+            EXPECT_EQ(variances[i], variance) << i << " K " << calibrated;
+            EXPECT_GE(variance, 1.3 * 1.3) << i;
+        }
+        if (!calibrated) {
+            EXPECT_EQ(distancesSquared.back(), std::numeric_limits<double>::infinity());
+            EXPECT_EQ(variances.back(), 1.3 * 1.3);
+        }
+    }
+}
+
 TEST(Rcme_Boxes, band_sprt_keeps_the_true_model_and_rejects_bad_ones_early)
 {
     const SyntheticScene s = scene(SCENE_GENERIC, 12, 0.5);

@@ -4,13 +4,77 @@
 #include "components/residual_uncertainty.hpp"
 
 #include "geometry/epipolar.hpp"
+#include "geometry/vector_clones.hpp"
 
 namespace cv {
 namespace rcme {
 namespace detail {
 
+namespace {
+
+// d^2 = r^2 / |J|^2 and the model's term a^T M a / |J|^2 of one correspondence; F row-major, C the
+// 7 x 9 factor row-major. Inlined into the one-point form and into each clone of the loop.
+RCME_ALWAYS_INLINE void propagate(const double* f, const double* c, double x1, double y1, double x2,
+                                  double y2, double& distanceSquared, double& modelTerm)
+{
+    const double l0 = f[0] * x1 + f[1] * y1 + f[2]; // F x1
+    const double l1 = f[3] * x1 + f[4] * y1 + f[5];
+    const double l2 = f[6] * x1 + f[7] * y1 + f[8];
+    const double m0 = f[0] * x2 + f[3] * y2 + f[6]; // F^T x2, first two entries
+    const double m1 = f[1] * x2 + f[4] * y2 + f[7];
+    const double r = x2 * l0 + y2 * l1 + l2;
+    const double jj = l0 * l0 + l1 * l1 + m0 * m0 + m1 * m1;
+    const double a[9] = {x2 * x1, x2 * y1, x2, y2 * x1, y2 * y1, y2, x1, y1, 1.0};
+    double quadratic = 0;
+    // Unrolled, so that the loop over the points is the innermost one and vectorizes.
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC unroll 7
+#endif
+    for (int k = 0; k < 7; ++k) {
+        double row = 0;
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC unroll 9
+#endif
+        for (int j = 0; j < 9; ++j)
+            row += c[9 * k + j] * a[j];
+        quadratic += row * row;
+    }
+    // |J| = 0 (a point at an epipole): infinitely far, with the noise's variance alone.
+    const bool defined = jj > 0;
+    distanceSquared = defined ? r * r / jj : std::numeric_limits<double>::infinity();
+    modelTerm = defined ? quadratic / jj : 0.0;
+}
+
+// The leverage-corrected variance of a sample point can round to or below zero when the model
+// fits it exactly; a floor keeps the test statistic finite.
+RCME_ALWAYS_INLINE double flooredVariance(double sigmaSquared, double modelTerm)
+{
+    const double floor = 1e-6 * sigmaSquared, variance = sigmaSquared + modelTerm;
+    return floor < variance ? variance : floor;
+}
+
+RCME_VECTOR_CLONES RCME_SPECULATIVE_MATH void
+propagateLoop(const double* f, const double* c, const double* a, const double* b, size_t n,
+              double sigmaSquared, double* distancesSquared, double* variances)
+{
+    // Local copies: the stores below cannot alias them, so they stay in registers.
+    double fLocal[9], cLocal[7 * 9];
+    std::copy(f, f + 9, fLocal);
+    std::copy(c, c + 7 * 9, cLocal);
+    f = fLocal;
+    c = cLocal;
+    for (size_t i = 0; i < n; ++i) {
+        double modelTerm = 0;
+        propagate(f, c, a[2 * i], a[2 * i + 1], b[2 * i], b[2 * i + 1], distancesSquared[i],
+                  modelTerm);
+        variances[i] = flooredVariance(sigmaSquared, modelTerm);
+    }
+}
+
+} // namespace
+
 ResidualUncertainty::ResidualUncertainty(const Model& model, double sigma)
-    : F_(model.F), sigmaSquared_(sigma * sigma)
+    : sigmaSquared_(sigma * sigma)
 {
     CV_Assert(model.uncertaintyDof > 0 && model.uncertaintyDof <= 7);
     const int P = model.uncertaintyDof;
@@ -21,32 +85,28 @@ ResidualUncertainty::ResidualUncertainty(const Model& model, double sigma)
             for (int c = 0; c < 3; ++c)
                 directions(k, 3 * r + c) = model.directions[k](r, c);
     // Sigma = P^T L D L^T P (the unused block of the covariance is zero and gets zero pivots), so
-    // a^T D Sigma D^T a = |D^1/2 L^T P directions a|^2: P products per point instead of 81.
+    // a^T D Sigma D^T a = |D^1/2 L^T P directions a|^2.
     const Eigen::LDLT<Eigen::Matrix<double, 7, 7>> ldlt(model.covariance);
     Eigen::Matrix<double, 7, 9> permuted = ldlt.transpositionsP() * directions;
-    factor_ = ldlt.vectorD().cwiseMax(0.0).cwiseSqrt().asDiagonal() * (ldlt.matrixU() * permuted);
+    Eigen::Map<Eigen::Matrix<double, 7, 9, Eigen::RowMajor>> factor(factor_);
+    factor = ldlt.vectorD().cwiseMax(0.0).cwiseSqrt().asDiagonal() * (ldlt.matrixU() * permuted);
+    Eigen::Map<Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> F(F_);
+    F = model.F;
 }
 
 void ResidualUncertainty::evaluate(const Eigen::Vector2d& x1, const Eigen::Vector2d& x2,
                                    bool leverage, double& distanceSquared, double& variance) const
 {
-    const Eigen::Vector3d p1 = homogeneous(x1), p2 = homogeneous(x2);
-    const Eigen::Vector3d Fx1 = F_ * p1, Ftx2 = F_.transpose() * p2;
-    const double r = p2.dot(Fx1);
-    const double jj =
-        Fx1.x() * Fx1.x() + Fx1.y() * Fx1.y() + Ftx2.x() * Ftx2.x() + Ftx2.y() * Ftx2.y();
-    if (!(jj > 0)) {
-        distanceSquared = std::numeric_limits<double>::infinity();
-        variance = sigmaSquared_;
-        return;
-    }
-    Eigen::Matrix<double, 9, 1> a;
-    a << p2.x() * p1, p2.y() * p1, p2.z() * p1;
-    const double modelTerm = factor_.lazyProduct(a).squaredNorm() / jj;
-    distanceSquared = r * r / jj;
-    // The leverage-corrected variance of a sample point can round to or below zero when the model
-    // fits it exactly; a floor keeps the test statistic finite.
-    variance = std::max(1e-6 * sigmaSquared_, sigmaSquared_ + (leverage ? -modelTerm : modelTerm));
+    double modelTerm = 0;
+    propagate(F_, factor_, x1.x(), x1.y(), x2.x(), x2.y(), distanceSquared, modelTerm);
+    variance = flooredVariance(sigmaSquared_, leverage ? -modelTerm : modelTerm);
+}
+
+void ResidualUncertainty::evaluate(const Eigen::Vector2d* points1, const Eigen::Vector2d* points2,
+                                   size_t count, double* distancesSquared, double* variances) const
+{
+    propagateLoop(F_, factor_, points1->data(), points2->data(), count, sigmaSquared_,
+                  distancesSquared, variances);
 }
 
 } // namespace detail

@@ -32,11 +32,16 @@ public:
     //! Squared Sampson distance d^2 and its variance v (pixels^2); v is kept positive.
     void evaluate(const Eigen::Vector2d& x1, const Eigen::Vector2d& x2, bool leverage,
                   double& distanceSquared, double& variance) const;
+    /** The same (s = +1) for the `count` correspondences from points1[0] and points2[0], into
+    distancesSquared[] and variances[]: the scorers' loop, vectorized across points, with the
+    arithmetic of the one-point form (the same results). */
+    void evaluate(const Eigen::Vector2d* points1, const Eigen::Vector2d* points2, size_t count,
+                  double* distancesSquared, double* variances) const;
 
 private:
-    Eigen::Matrix3d F_;
-    //! C with C^T C = M: a^T M a = |C a|^2 (rows beyond the model's DoF are zero).
-    Eigen::Matrix<double, 7, 9> factor_;
+    double F_[9]; //!< row-major
+    //! C with C^T C = M, row-major: a^T M a = |C a|^2 (rows beyond the model's DoF are zero).
+    double factor_[7 * 9];
     double sigmaSquared_;
 };
 
@@ -48,15 +53,21 @@ void forEachUncertainInlier(const TwoViewData& data, const Model& model, double 
                             Visit&& visit,
                             double maxVariance = std::numeric_limits<double>::infinity())
 {
+    constexpr size_t kBlock = 256;
     if (model.uncertaintyDof == 0)
         return;
     const ResidualUncertainty uncertainty(model, sigma);
-    for (size_t i = 0; i < data.points1.size(); ++i) {
-        double distanceSquared = 0, variance = 0;
-        uncertainty.evaluate(data.points1[i], data.points2[i], false, distanceSquared, variance);
-        variance = std::min(variance, maxVariance);
-        if (distanceSquared <= bound * variance)
-            visit(i, distanceSquared, variance);
+    double distancesSquared[kBlock], variances[kBlock];
+    const size_t n = data.points1.size();
+    for (size_t begin = 0; begin < n; begin += kBlock) {
+        const size_t count = std::min(kBlock, n - begin);
+        uncertainty.evaluate(&data.points1[begin], &data.points2[begin], count, distancesSquared,
+                             variances);
+        for (size_t j = 0; j < count; ++j) {
+            const double variance = std::min(variances[j], maxVariance);
+            if (distancesSquared[j] <= bound * variance)
+                visit(begin + j, distancesSquared[j], variance);
+        }
     }
 }
 
