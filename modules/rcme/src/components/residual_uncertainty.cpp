@@ -13,7 +13,9 @@ namespace detail {
 namespace {
 
 // d^2 = r^2 / |J|^2 and the model's term a^T M a / |J|^2 of one correspondence; F row-major, C the
-// 7 x 9 factor row-major. Inlined into the one-point form and into each clone of the loop.
+// first Rows rows of the 7 x 9 factor, row-major (the others are zero: they would add +0).
+// Inlined into the one-point form and into each clone of the loop.
+template <int Rows>
 RCME_ALWAYS_INLINE void propagate(const double* f, const double* c, double x1, double y1, double x2,
                                   double y2, double& distanceSquared, double& modelTerm)
 {
@@ -30,7 +32,7 @@ RCME_ALWAYS_INLINE void propagate(const double* f, const double* c, double x1, d
 #if defined(__GNUC__) && !defined(__clang__)
 #pragma GCC unroll 7
 #endif
-    for (int k = 0; k < 7; ++k) {
+    for (int k = 0; k < Rows; ++k) {
         double row = 0;
 #if defined(__GNUC__) && !defined(__clang__)
 #pragma GCC unroll 9
@@ -53,20 +55,21 @@ RCME_ALWAYS_INLINE double flooredVariance(double sigmaSquared, double modelTerm)
     return floor < variance ? variance : floor;
 }
 
+template <int Rows>
 RCME_VECTOR_CLONES RCME_SPECULATIVE_MATH void
 propagateLoop(const double* f, const double* c, const double* a, const double* b, size_t n,
               double sigmaSquared, double* distancesSquared, double* variances)
 {
     // Local copies: the stores below cannot alias them, so they stay in registers.
-    double fLocal[9], cLocal[7 * 9];
+    double fLocal[9], cLocal[Rows * 9];
     std::copy(f, f + 9, fLocal);
-    std::copy(c, c + 7 * 9, cLocal);
+    std::copy(c, c + Rows * 9, cLocal);
     f = fLocal;
     c = cLocal;
     for (size_t i = 0; i < n; ++i) {
         double modelTerm = 0;
-        propagate(f, c, a[2 * i], a[2 * i + 1], b[2 * i], b[2 * i + 1], distancesSquared[i],
-                  modelTerm);
+        propagate<Rows>(f, c, a[2 * i], a[2 * i + 1], b[2 * i], b[2 * i + 1], distancesSquared[i],
+                        modelTerm);
         variances[i] = flooredVariance(sigmaSquared, modelTerm);
     }
 }
@@ -92,21 +95,28 @@ ResidualUncertainty::ResidualUncertainty(const Model& model, double sigma)
     factor = ldlt.vectorD().cwiseMax(0.0).cwiseSqrt().asDiagonal() * (ldlt.matrixU() * permuted);
     Eigen::Map<Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> F(F_);
     F = model.F;
+    // The motion's five parameters leave the last two rows zero (their pivots are the unused
+    // block's): a loop over five rows then gives the same sums.
+    compactFactor_ = factor.bottomRows<2>().isZero(0.0);
 }
 
 void ResidualUncertainty::evaluate(const Eigen::Vector2d& x1, const Eigen::Vector2d& x2,
                                    bool leverage, double& distanceSquared, double& variance) const
 {
     double modelTerm = 0;
-    propagate(F_, factor_, x1.x(), x1.y(), x2.x(), x2.y(), distanceSquared, modelTerm);
+    if (compactFactor_)
+        propagate<5>(F_, factor_, x1.x(), x1.y(), x2.x(), x2.y(), distanceSquared, modelTerm);
+    else
+        propagate<7>(F_, factor_, x1.x(), x1.y(), x2.x(), x2.y(), distanceSquared, modelTerm);
     variance = flooredVariance(sigmaSquared_, leverage ? -modelTerm : modelTerm);
 }
 
 void ResidualUncertainty::evaluate(const Eigen::Vector2d* points1, const Eigen::Vector2d* points2,
                                    size_t count, double* distancesSquared, double* variances) const
 {
-    propagateLoop(F_, factor_, points1->data(), points2->data(), count, sigmaSquared_,
-                  distancesSquared, variances);
+    (compactFactor_ ? propagateLoop<5> : propagateLoop<7>)(F_, factor_, points1->data(),
+                                                           points2->data(), count, sigmaSquared_,
+                                                           distancesSquared, variances);
 }
 
 } // namespace detail

@@ -42,6 +42,7 @@ private:
     double F_[9]; //!< row-major
     //! C with C^T C = M, row-major: a^T M a = |C a|^2 (rows beyond the model's DoF are zero).
     double factor_[7 * 9];
+    bool compactFactor_ = false; //!< rows 5 and 6 of the factor are zero
     double sigmaSquared_;
 };
 
