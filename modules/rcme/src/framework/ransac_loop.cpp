@@ -114,9 +114,8 @@ on one thread: run-wide tests (Scorer::commit), candidate set, local optimisatio
 bound. Evaluation reads no state of the run but the inlier count that matters, taken before the
 batch (a scorer that stops below it changes nothing the run would keep), so the result is that
 of a sequential run whatever the batch size and thread count (a sequential run is batches of
-one). Iterations beyond a bound
-lowered inside a batch are evaluated but never committed. Every buffer is sized here: the loop
-itself does not allocate. */
+one). Iterations beyond a bound lowered inside a batch are evaluated but never committed. Every
+buffer is sized here: the loop itself does not allocate. */
 class HypothesisSearch
 {
 public:
@@ -168,7 +167,6 @@ public:
 
     void run(CandidateSet& candidates, RansacResult& result)
     {
-        result_ = &result;
         int iteration = 0;
         while (iteration < c_.termination->iterationBound()) {
             // Checked per batch (one iteration when sequential): a clock read is cheap next to
@@ -178,6 +176,7 @@ public:
                 break;
             }
             const int count = std::min(batch_, c_.termination->iterationBound() - iteration);
+            inliersThatMatter_ = inliersThatMatter(result);
             evaluate(iteration, count);
             for (int k = 0; k < count && iteration < c_.termination->iterationBound();
                  ++k, ++iteration)
@@ -217,9 +216,9 @@ private:
     hypothesis (Scorer::evaluateUpTo: a scorer ranking by count has no better candidate below it),
     or a rival the ambiguity test would keep. Taken before a batch is evaluated; it only grows as
     the batch is committed, so a hypothesis below it then stays below it. */
-    int inliersThatMatter() const
+    int inliersThatMatter(const RansacResult& result) const
     {
-        int least = result_->mostSupportedInliers + 1;
+        int least = result.mostSupportedInliers + 1;
         if (rivals_)
             least = std::min(least, rivals_->leastSupportConsidered());
         return least;
@@ -228,7 +227,6 @@ private:
     void evaluate(int firstIteration, int count)
     {
         const bool sequential = !sequentialVerifiers_.empty();
-        inliersThatMatter_ = inliersThatMatter();
         forEachIteration(count, [&](Lane& lane, int k) {
             IterationSlot& slot = slots_[static_cast<size_t>(k)];
             c_.sampler->generateSample(firstIteration + k, slot.sample);
@@ -326,7 +324,7 @@ private:
                 drawDistinct(state, static_cast<uint32_t>(innerPool_.size()), 0, innerDraw_);
                 for (size_t j = 0; j < m; ++j)
                     slot.sample[j] = innerPool_[static_cast<size_t>(innerDraw_[j])];
-                inliersThatMatter_ = inliersThatMatter();
+                inliersThatMatter_ = inliersThatMatter(result);
                 solveAndVerify(lane, slot, /*score=*/true);
                 commit(slot, candidates, result);
             }
@@ -380,9 +378,8 @@ private:
     std::vector<int> innerDraw_;                      //!< an inner sample, as pool positions
     int innerDrawn_ = 0;                              //!< inner samples drawn so far
     std::unique_ptr<RivalMotions> rivals_;            //!< with the ambiguity test only
-    long long pointsEvaluated_ = 0;  //!< residuals evaluated by verification and scoring
-    RansacResult* result_ = nullptr; //!< the run's result, while run() is under way
-    int inliersThatMatter_ = 0;      //!< inliersThatMatter() before the batch being evaluated
+    long long pointsEvaluated_ = 0; //!< residuals evaluated by verification and scoring
+    int inliersThatMatter_ = 0;     //!< inliersThatMatter() before the batch being evaluated
 };
 
 } // namespace
