@@ -283,6 +283,55 @@ TEST(Rcme_Statistics, binomial_tail_bound_small_and_large_samples)
     EXPECT_EQ(binomialTailBound(1000000, 0.01, 5e-5), 10390);
 }
 
+// A subset is the same problem (camera, noise, bounds) on fewer correspondences, in their order;
+// a gathered buffer holds nothing of its previous contents.
+TEST(Rcme_TwoViewData, subsets_keep_the_problem_and_the_order)
+{
+    TwoViewData data;
+    data.calibrated = true;
+    data.K << 500, 0, 320, 0, 510, 240, 0, 0, 1;
+    data.Kinv = data.K.inverse();
+    data.sigma = 0.7;
+    data.threshold = 1.3;
+    data.consistencyBound = 5.99;
+    data.useEstimatedNoise = false;
+    for (int i = 0; i < 50; ++i) {
+        data.points1.emplace_back(i, -i);
+        data.points2.emplace_back(2 * i, 0.5 * i);
+    }
+    const auto expectSameProblem = [&](const TwoViewData& part) {
+        EXPECT_EQ(part.calibrated, data.calibrated);
+        EXPECT_EQ(part.K, data.K);
+        EXPECT_EQ(part.Kinv, data.Kinv);
+        EXPECT_EQ(part.sigma, data.sigma);
+        EXPECT_EQ(part.threshold, data.threshold);
+        EXPECT_EQ(part.consistencyBound, data.consistencyBound);
+        EXPECT_EQ(part.useEstimatedNoise, data.useEstimatedNoise);
+        ASSERT_EQ(part.points1.size(), part.points2.size());
+    };
+
+    const TwoViewData every7th = evenlySpacedSubset(data, 8); // stride 7 leaves 8 of 50
+    expectSameProblem(every7th);
+    ASSERT_EQ(every7th.size(), 8);
+    for (size_t k = 0; k < 8; ++k) {
+        EXPECT_EQ(every7th.points1[k], data.points1[7 * k]);
+        EXPECT_EQ(every7th.points2[k], data.points2[7 * k]);
+    }
+    EXPECT_EQ(evenlySpacedSubset(data, 50).points1, data.points1);
+
+    const std::vector<int> indices = {3, 4, 10, 11, 12, 30, 41, 49};
+    TwoViewData gathered; // another problem's settings and points, to be replaced
+    gathered.points1.assign(9, Eigen::Vector2d(-1, -1));
+    gathered.points2.assign(9, Eigen::Vector2d(-1, -1));
+    gatherCorrespondences(data, indices, 3, gathered);
+    expectSameProblem(gathered);
+    ASSERT_EQ(gathered.size(), 3);
+    for (size_t k = 0; k < 3; ++k) {
+        EXPECT_EQ(gathered.points1[k], data.points1[static_cast<size_t>(indices[3 * k])]);
+        EXPECT_EQ(gathered.points2[k], data.points2[static_cast<size_t>(indices[3 * k])]);
+    }
+}
+
 } // namespace
 } // namespace opencv_test
 

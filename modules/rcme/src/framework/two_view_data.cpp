@@ -164,20 +164,46 @@ void maskIndices(const std::vector<uchar>& mask, std::vector<int>& indices)
             indices.push_back(static_cast<int>(i));
 }
 
+namespace {
+
+// Everything of the problem but its correspondences.
+void copySettings(const TwoViewData& from, TwoViewData& to)
+{
+    to.calibrated = from.calibrated;
+    to.K = from.K;
+    to.Kinv = from.Kinv;
+    to.sigma = from.sigma;
+    to.threshold = from.threshold;
+    to.consistencyBound = from.consistencyBound;
+    to.useEstimatedNoise = from.useEstimatedNoise;
+}
+
+} // namespace
+
 TwoViewData evenlySpacedSubset(const TwoViewData& data, size_t maxPoints)
 {
-    TwoViewData subset = data;
-    const size_t n = data.points1.size();
-    const size_t stride = subsetStride(n, maxPoints);
+    const size_t stride = subsetStride(data.points1.size(), maxPoints);
     if (stride == 1)
-        return subset;
-    subset.points1.clear();
-    subset.points2.clear();
-    for (size_t i = 0; i < n; i += stride) {
+        return data;
+    TwoViewData subset;
+    copySettings(data, subset);
+    for (size_t i = 0; i < data.points1.size(); i += stride) {
         subset.points1.push_back(data.points1[i]);
         subset.points2.push_back(data.points2[i]);
     }
     return subset;
+}
+
+void gatherCorrespondences(const TwoViewData& data, const std::vector<int>& indices, size_t stride,
+                           TwoViewData& out)
+{
+    copySettings(data, out);
+    out.points1.clear();
+    out.points2.clear();
+    for (size_t k = 0; k < indices.size(); k += stride) {
+        out.points1.push_back(data.points1[static_cast<size_t>(indices[k])]);
+        out.points2.push_back(data.points2[static_cast<size_t>(indices[k])]);
+    }
 }
 
 } // namespace detail

@@ -26,6 +26,7 @@ struct TwoViewData
     makeTwoViewData; the default is that of the default alpha 0.05 and dof 1. */
     double consistencyBound = 3.841458820694124;
     bool useEstimatedNoise = true; //!< Params::useEstimatedNoise
+    // A new field is copied by copySettings (two_view_data.cpp) too.
 
     int size() const { return static_cast<int>(points1.size()); }
 };
@@ -53,6 +54,11 @@ inline size_t subsetStride(size_t count, size_t maxPoints = kMaxIteratedPoints)
 //! Every k-th correspondence of `data` (k the smallest that leaves at most `maxPoints`), with its
 //! camera and noise: the subset on which a decision about a large problem is made.
 TwoViewData evenlySpacedSubset(const TwoViewData& data, size_t maxPoints);
+
+/** `out` becomes `data`'s camera and noise with the correspondences indices[0], indices[stride],
+indices[2 stride], ... only, in that order; its buffers are reused. */
+void gatherCorrespondences(const TwoViewData& data, const std::vector<int>& indices, size_t stride,
+                           TwoViewData& out);
 
 /** The positions of the ones of `mask`, in order, into `indices` (sized for every point first, so
 that a reused buffer never allocates again). */
