@@ -44,6 +44,10 @@ public:
         return score;
     }
 
+    std::optional<Score> scoreOfBandCount(int bandInliers) const override
+    {
+        return scoreOf(bandInliers);
+    }
     void classify(const TwoViewData& data, const Model& model, std::vector<uchar>& mask) override
     {
         mask.resize(data.points1.size());

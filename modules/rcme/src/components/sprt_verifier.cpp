@@ -35,6 +35,7 @@ class UncertaintyConsistency
 {
 public:
     static constexpr size_t kBlock = 1;
+    static constexpr bool kIsBand = false;
     // A hypothesis costs about as much as checking this many points: the minimal solve, the
     // instantiation's fit on its sample and the covariance (measured order of magnitude).
     static constexpr double kModelCostInPoints = 200.0;
@@ -75,6 +76,7 @@ class BandConsistency
 {
 public:
     static constexpr size_t kBlock = 16;
+    static constexpr bool kIsBand = true;
     // A minimal solve (about 1.5 us per hypothesis of the 5- and 8-point solvers) against about
     // 1.2 ns per point in the band kernel.
     static constexpr double kModelCostInPoints = 1000.0;
@@ -145,7 +147,14 @@ public:
             }
         }
         record(checked, false, static_cast<double>(consistent) / checked);
+        consistentOfPassed_ = consistent;
         return true;
+    }
+
+    // A model that passed was checked on every point.
+    int bandInliersOfPassed() const override
+    {
+        return Consistency::kIsBand ? consistentOfPassed_ : -1;
     }
 
     long long pointsChecked() const override { return pointsChecked_; }
@@ -195,6 +204,7 @@ private:
     double delta_ = 0.01;
     double threshold_ = 1.0;
     long long pointsChecked_ = 0;
+    int consistentOfPassed_ = -1;
     long long rejected_ = 0;
     double rejectedConsistentSum_ = 0;
 };

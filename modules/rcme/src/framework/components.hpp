@@ -12,6 +12,7 @@
 #include "framework/model.hpp"
 
 #include <memory>
+#include <optional>
 #include <vector>
 
 namespace cv {
@@ -58,6 +59,9 @@ public:
     //! Correspondences (outside the sample) whose residual this verifier evaluated so far: the
     //! cost SPRT saves is reported from it.
     virtual long long pointsChecked() const { return 0; }
+    //! After isModelGood() passed a model: its number of points within the threshold's Sampson
+    //! band when the verifier counted them on every point (SPRT on the band), else -1.
+    virtual int bandInliersOfPassed() const { return -1; }
     //! Whether the outcome depends on the hypotheses verified before (SPRT adapts its test):
     //! such a verifier, and every one after it, runs on one thread in iteration order.
     virtual bool isSequential() const { return false; }
@@ -88,6 +92,14 @@ public:
         (void)inliersThatMatter;
         pointsRead = data.size();
         return evaluate(data, model);
+    }
+    /** The score evaluate() gives a model with `bandInliers` points within the threshold's
+    Sampson band, when that count is all it needs (a scorer that counts the band's inliers: a
+    verifier that counted them spares it a second pass); std::nullopt otherwise. */
+    virtual std::optional<Score> scoreOfBandCount(int bandInliers) const
+    {
+        (void)bandInliers;
+        return std::nullopt;
     }
     //! Records an evaluated score in the run so far and completes `score.isCandidate`.
     virtual void commit(Score& score) { (void)score; }

@@ -90,6 +90,8 @@ struct IterationSlot
     int solutions = 0; //!< what the solver returned (0: degenerate sample)
     std::vector<Model> models;
     std::vector<uchar> alive; //!< passed the verifiers so far
+    //! The band's inliers a verifier counted on every point (Scorer::scoreOfBandCount), else -1.
+    std::vector<int> bandInliers;
     std::vector<Score> scores;
     //! Residuals evaluated by the verifiers and the scorer, over this iteration's hypotheses.
     long long pointsRead = 0;
@@ -161,6 +163,7 @@ public:
             slot.models.reserve(solutions);
             slot.alive.resize(solutions);
             slot.scores.resize(solutions);
+            slot.bandInliers.resize(solutions);
         }
         innerDraw_.resize(static_cast<size_t>(c.solver->sampleSize()));
     }
@@ -338,14 +341,24 @@ private:
         slot.solutions = lane.solver->estimate(data_, slot.sample, slot.models);
         slot.pointsRead = 0;
         for (size_t h = 0; h < slot.models.size(); ++h) {
+            slot.bandInliers[h] = -1;
             slot.alive[h] = passes(lane.verifiers, slot, h);
             if (slot.alive[h] && score)
                 scoreHypothesis(lane, slot, h);
         }
     }
 
+    // A hypothesis whose band inliers a verifier has counted is not read again: a count below
+    // inliersThatMatter_ then stays a candidate where the bail-out would have dropped it, which
+    // changes nothing (it is neither the most supported, nor a rival, nor the best candidate).
     void scoreHypothesis(Lane& lane, IterationSlot& slot, size_t h) const
     {
+        if (slot.bandInliers[h] >= 0)
+            if (const std::optional<Score> counted =
+                    lane.scorer->scoreOfBandCount(slot.bandInliers[h])) {
+                slot.scores[h] = *counted;
+                return;
+            }
         int pointsRead = 0;
         slot.scores[h] =
             lane.scorer->evaluateUpTo(data_, slot.models[h], inliersThatMatter_, pointsRead);
@@ -362,6 +375,8 @@ private:
             slot.pointsRead += verifier->pointsChecked() - checkedBefore;
             if (!isGood)
                 return false;
+            if (verifier->bandInliersOfPassed() >= 0)
+                slot.bandInliers[h] = verifier->bandInliersOfPassed();
         }
         return true;
     }
