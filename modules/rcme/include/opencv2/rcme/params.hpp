@@ -290,7 +290,8 @@ struct CV_EXPORTS_W_SIMPLE Report
     verification and scoring: the number of points for methods that score every hypothesis on
     all of them, fewer with SPRT (Params::verification; always with Cov-RANSAC), which rejects
     bad hypotheses after a few points, and with METHOD_STANDARD, whose inlier count stops once a
-    hypothesis cannot beat the best one (early bail-out, which changes no result). With
+    hypothesis cannot beat the best one (early bail-out, which changes no result) and which with
+    SPRT takes the count of a hypothesis SPRT passed from SPRT's own reading. With
     isParallel hypotheses are evaluated in batches before the best one of the batch is known, so
     this can be higher than in a sequential run (the same for every thread count). NaN when no
     hypothesis was instantiated. */
