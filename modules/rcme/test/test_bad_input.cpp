@@ -347,7 +347,7 @@ TEST(Rcme_BadInput, time_budget_stops_every_method_with_the_best_so_far)
     const SyntheticScene clean = genericTestScene(11, 0.8, 200);
     for (Method method :
          {METHOD_STANDARD, METHOD_RCME, METHOD_PRCME, METHOD_MLESAC, METHOD_COV_RANSAC}) {
-        SCOPED_TRACE(method);
+        SCOPED_TRACE(static_cast<int>(method));
         Params params;
         params.method = method;
         params.maxIterations = 10000000;

@@ -94,14 +94,14 @@ TEST(Rcme_Rejected, poor_quality_input_reports_its_most_supported_hypothesis_wit
         params.method = method;
         params.maxIterations = 200;
         const Report r = estimateRelativeMotion(p1, p2, Mat(K), params);
-        ASSERT_EQ(r.status, STATUS_POOR_QUALITY_INPUT) << method;
-        EXPECT_TRUE(r.F.empty() && r.R.empty() && r.t.empty()) << method;
-        ASSERT_EQ(r.rejectedF.size(), Size(3, 3)) << method;
-        ASSERT_EQ(r.rejectedR.size(), Size(3, 3)) << method;
-        ASSERT_EQ(r.rejectedT.size(), Size(1, 3)) << method;
-        EXPECT_NEAR(determinant(r.rejectedR), 1.0, 1e-9) << method;
+        ASSERT_EQ(r.status, STATUS_POOR_QUALITY_INPUT) << static_cast<int>(method);
+        EXPECT_TRUE(r.F.empty() && r.R.empty() && r.t.empty()) << static_cast<int>(method);
+        ASSERT_EQ(r.rejectedF.size(), Size(3, 3)) << static_cast<int>(method);
+        ASSERT_EQ(r.rejectedR.size(), Size(3, 3)) << static_cast<int>(method);
+        ASSERT_EQ(r.rejectedT.size(), Size(1, 3)) << static_cast<int>(method);
+        EXPECT_NEAR(determinant(r.rejectedR), 1.0, 1e-9) << static_cast<int>(method);
         EXPECT_NEAR(cv::norm(r.rejectedR * r.rejectedR.t(), Mat::eye(3, 3, CV_64F)), 0.0, 1e-9);
-        EXPECT_NEAR(cv::norm(r.rejectedT), 1.0, 1e-9) << method;
+        EXPECT_NEAR(cv::norm(r.rejectedT), 1.0, 1e-9) << static_cast<int>(method);
     }
 }
 
@@ -130,8 +130,9 @@ TEST(Rcme_Degeneracy, planar_scenes_and_pure_rotations_without_k_are_degenerate)
                     "%s, method %d, seed %d", kind == Degeneracy::Plane ? "plane" : "pure rotation",
                     static_cast<int>(method), seed);
                 EXPECT_NE(r.status, STATUS_SUCCESS) << what;
-                if (r.status == STATUS_DEGENERATE_CONFIGURATION)
+                if (r.status == STATUS_DEGENERATE_CONFIGURATION) {
                     EXPECT_NE(r.message.find("homography"), std::string::npos) << what;
+                }
                 EXPECT_TRUE(r.F.empty() && r.R.empty()) << what;
                 ASSERT_EQ(r.mask.rows, v.points1.rows) << what;
                 EXPECT_EQ(countNonZero(r.mask), 0) << what;

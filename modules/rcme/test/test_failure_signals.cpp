@@ -73,8 +73,9 @@ TEST(Rcme_FailureSignals, ambiguity_test_reports_its_gap_and_flags_below_the_mar
         // Every finite gap is large with a margin below it: the status follows the gap.
         params.ambiguityMargin = 1e9;
         const Report all = estimateRelativeMotion(s.points1, s.points2, s.cameraMatrix, params);
-        if (std::isfinite(all.rivalCostGap))
+        if (std::isfinite(all.rivalCostGap)) {
             EXPECT_EQ(all.status, STATUS_UNDETERMINED_MOTION);
+        }
     }
     EXPECT_GE(tested, 4) << flagged << " flagged";
 }

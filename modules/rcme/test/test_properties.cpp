@@ -99,7 +99,8 @@ TEST(Rcme_Properties, pixel_unit_does_not_change_the_motion)
             Status status;
             cv::rcme::recoverPose(scene.points1, scene.points2, scene.cameraMatrix, E, R, t, params,
                                   mask, status);
-            ASSERT_EQ(status, STATUS_SUCCESS) << "method " << method << ", seed " << seed;
+            ASSERT_EQ(status, STATUS_SUCCESS)
+                << "method " << static_cast<int>(method) << ", seed " << seed;
             for (const double s : factors) {
                 SCOPED_TRACE(cv::format("method %d, seed %d, factor %g", method, seed, s));
                 const Mat scaleRows = (Mat_<double>(3, 3) << s, 0, 0, 0, s, 0, 0, 0, 1);

@@ -84,8 +84,9 @@ TEST(Rcme_RCME, refinement_reaches_standard_on_clean_corridor_data)
         std::sort(v.begin(), v.end());
         return v[v.size() / 2];
     };
-    if (kChecksStatistics)
+    if (kChecksStatistics) {
         EXPECT_LT(median(rcmeErrors), 2 * median(standardErrors));
+    }
 }
 
 TEST(Rcme_RCME, uncalibrated_gives_a_fundamental_matrix)
@@ -486,10 +487,11 @@ TEST(Rcme_Baselines, every_method_verifies_by_sprt_on_request)
             << "method " << static_cast<int>(method);
         // RCME's consistency test checks the sample's points first, Standard's count stops once
         // out of reach of the best (Scorer::evaluateUpTo); the rest is scoring.
-        if (method == METHOD_STANDARD)
+        if (method == METHOD_STANDARD) {
             EXPECT_LT(full.pointsPerHypothesis, n);
-        else if (method != METHOD_RCME)
+        } else if (method != METHOD_RCME) {
             EXPECT_DOUBLE_EQ(full.pointsPerHypothesis, n) << "method " << static_cast<int>(method);
+        }
         EXPECT_LT(sprt.pointsPerHypothesis, 0.6 * full.pointsPerHypothesis)
             << "method " << static_cast<int>(method);
     }

@@ -364,8 +364,9 @@ TEST(Rcme_Standard, local_optimization_gathers_more_inliers)
             recall[lo] += static_cast<double>(found) / countNonZero(scene.inlierMask) / runs;
         }
     }
-    if (kChecksStatistics)
+    if (kChecksStatistics) {
         EXPECT_GT(recall[1], recall[0] + 0.04);
+    }
 }
 
 // Above kMaxIteratedPoints (20000) inliers the deciding fits iterate on an evenly spaced subset

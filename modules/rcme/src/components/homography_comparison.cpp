@@ -13,6 +13,7 @@
 // not larger.
 
 #include "components/homography_comparison.hpp"
+#include "framework/component_factories.hpp"
 #include "framework/model_space.hpp"
 #include "framework/ransac_loop.hpp"
 #include "geometry/epipolar.hpp"

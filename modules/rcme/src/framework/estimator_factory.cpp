@@ -15,6 +15,8 @@ namespace cv {
 namespace rcme {
 namespace detail {
 
+namespace {
+
 // Point indices by decreasing match quality; without scores the points are taken as sorted.
 std::vector<int> qualityOrder(const Mat& quality, int pointCount)
 {
@@ -49,6 +51,8 @@ bool usesSprt(const Params& params, const TwoViewData& data)
         return params.method == METHOD_COV_RANSAC || data.size() >= kSprtMinPoints;
     }
 }
+
+} // namespace
 
 // A few steps suffice: the refit only has to reach its basin's bottom, and it runs often.
 constexpr int kLocalOptimizationIterations = 5;
