@@ -375,8 +375,8 @@ private:
             slot.pointsRead += verifier->pointsChecked() - checkedBefore;
             if (!isGood)
                 return false;
-            if (verifier->bandInliersOfPassed() >= 0)
-                slot.bandInliers[h] = verifier->bandInliersOfPassed();
+            if (const int counted = verifier->bandInliersOfPassed(); counted >= 0)
+                slot.bandInliers[h] = counted;
         }
         return true;
     }
