@@ -45,6 +45,11 @@ def hard_case_pairs(seeds, first=0):
             _generated("few points (40)", seed, 1.0, kind=rcme.SCENE_GENERIC, numPoints=40),
             _generated("noise 2.5 px", seed, 2.5, kind=rcme.SCENE_GENERIC),
             _generated("plane", seed, 1.0, kind=rcme.SCENE_PLANE),
+            # points within 0.5 m of a plane 12 m away: about 2 px of parallax off the plane
+            _generated("near-planar", seed, 1.0, kind=rcme.SCENE_PLANE, planeRelief=0.5),
+            _generated("forward motion", seed, 1.0, kind=rcme.SCENE_GENERIC, forwardMotion=True),
+            # the inliers in the top-left quadrant of image 1, the outliers everywhere
+            _generated("one quadrant", seed, 1.0, kind=rcme.SCENE_GENERIC, inlierRegion=0.5),
             # t_gt is zero: no returned motion is right
             _generated("pure rotation", seed, 1.0, kind=rcme.SCENE_PURE_ROTATION),
             _all_outliers(seed),

@@ -12,7 +12,8 @@ namespace rcme {
 SceneParams::SceneParams()
     : kind(SCENE_CORRIDOR), numPoints(500), inlierRatio(0.5), sigma(1.0), seed(0),
       focalLength(500.0), imageWidth(640), imageHeight(480), baseline(1.0), corridorDepth(50.0),
-      corridorWidth(4.0), corridorHeight(3.0)
+      corridorWidth(4.0), corridorHeight(3.0), inlierRegion(1.0), planeRelief(0.0),
+      forwardMotion(false)
 {
 }
 
@@ -108,6 +109,12 @@ void validate(const SceneParams& p)
     requirePositiveFinite(p.corridorDepth, "corridorDepth");
     requirePositiveFinite(p.corridorWidth, "corridorWidth");
     requirePositiveFinite(p.corridorHeight, "corridorHeight");
+    if (!(p.inlierRegion > 0.0 && p.inlierRegion <= 1.0))
+        CV_Error(Error::StsBadArg,
+                 format("SceneParams.inlierRegion must be in (0, 1] (got %g)", p.inlierRegion));
+    if (!(std::isfinite(p.planeRelief) && p.planeRelief >= 0.0))
+        CV_Error(Error::StsBadArg,
+                 format("SceneParams.planeRelief must be finite and >= 0 (got %g)", p.planeRelief));
 }
 
 const char* kindName(SceneKind kind)
@@ -232,7 +239,9 @@ void placeGenericCameras(const SceneParams& p, RNG& rng, Camera& cam1, Camera& c
     const double side = rng.uniform(0.0, 1.0) < 0.5 ? -1.0 : 1.0;
     const double dy = rng.uniform(-kGenericBaselineJitter, kGenericBaselineJitter);
     const double dz = rng.uniform(-kGenericBaselineJitter, kGenericBaselineJitter);
-    cam2.C = p.baseline * Vector3d(side, dy, dz).normalized();
+    // The same draws either way, so a seed gives the same jitter and tilt to both motions.
+    cam2.C = p.baseline *
+             (p.forwardMotion ? Vector3d(side * dy, dz, 1.0) : Vector3d(side, dy, dz)).normalized();
 
     const Vector3d target(0.0, 0.0, 0.5 * (kGenericMinDepth + kGenericMaxDepth));
     const Vector3d zAxis = (target - cam2.C).normalized();
@@ -282,6 +291,7 @@ struct ScenePoints
     SceneKind kind;
     Intrinsics K;
     Corridor corridor;
+    double planeRelief;
 
     Vector3d sample(RNG& rng) const
     {
@@ -293,9 +303,12 @@ struct ScenePoints
         const double v = rng.uniform(0.0, static_cast<double>(K.height));
         const double z = rng.uniform(kGenericMinDepth, kGenericMaxDepth);
         const Vector3d ray((u - K.cx) / K.f, (v - K.cy) / K.f, 1.0);
-        if (kind == SCENE_PLANE) // the same ray, to the plane
-            return ray * (kPlaneDistance / kPlaneNormal.dot(ray));
-        return ray * z;
+        if (kind != SCENE_PLANE)
+            return ray * z;
+        const Vector3d onPlane = ray * (kPlaneDistance / kPlaneNormal.dot(ray)); // the same ray
+        if (planeRelief <= 0) // no draw: the plane's scenes stay those of before the relief
+            return onPlane;
+        return onPlane + rng.uniform(-planeRelief, planeRelief) * kPlaneNormal;
     }
 };
 
@@ -336,8 +349,10 @@ SyntheticScene generateScene(const SceneParams& params)
     const Intrinsics K{params.focalLength, 0.5 * params.imageWidth, 0.5 * params.imageHeight,
                        params.imageWidth, params.imageHeight};
     const ScenePoints scenePoints{
-        params.kind, K,
-        Corridor{params.corridorWidth, params.corridorHeight, params.corridorDepth}};
+        params.kind, K, Corridor{params.corridorWidth, params.corridorHeight, params.corridorDepth},
+        params.planeRelief};
+    const Vector2d inlierCorner(params.inlierRegion * params.imageWidth,
+                                params.inlierRegion * params.imageHeight);
 
     // The cameras are drawn before anything that depends on numPoints, inlierRatio or sigma, so
     // a seed gives the same motion whatever those are.
@@ -396,7 +411,8 @@ SyntheticScene generateScene(const SceneParams& params)
         uv1 += Vector2d(e1x, e1y);
         uv2 += Vector2d(e2x, e2y);
         // Tested after the noise so that every reported pixel lies inside its image.
-        if (!K.inside(uv1) || !K.inside(uv2))
+        if (!K.inside(uv1) || !K.inside(uv2) || uv1.x() >= inlierCorner.x() ||
+            uv1.y() >= inlierCorner.y())
             continue;
         pts1[count] = uv1;
         pts2[count] = uv2;

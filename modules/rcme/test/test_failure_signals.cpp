@@ -6,6 +6,10 @@
 
 #include "test_precomp.hpp"
 
+#include <functional>
+#include <utility>
+#include <vector>
+
 namespace opencv_test {
 namespace {
 
@@ -141,6 +145,49 @@ TEST(Rcme_FailureSignals, forward_motion_is_not_ambiguous_with_its_mirror)
     }
     EXPECT_EQ(flagged, 0);
     EXPECT_EQ(wrong, 0);
+}
+
+// Three cases of the benchmark's hard-case suite (samples/benchmark/hard_cases.py) on which the
+// defaults must not return a wrong motion as a success: points near a plane (little parallax off
+// it), forward motion (the epipole in the image) and inliers in one image quadrant.
+TEST(Rcme_FailureSignals, near_planar_forward_and_one_quadrant_scenes_give_right_motions)
+{
+    const std::vector<std::pair<const char*, std::function<void(SceneParams&)>>> cases = {
+        {"near-planar",
+         [](SceneParams& p) {
+             p.kind = SCENE_PLANE;
+             p.planeRelief = 0.5;
+         }},
+        {"forward motion",
+         [](SceneParams& p) {
+             p.kind = SCENE_GENERIC;
+             p.forwardMotion = true;
+         }},
+        {"one quadrant",
+         [](SceneParams& p) {
+             p.kind = SCENE_GENERIC;
+             p.inlierRegion = 0.5;
+         }},
+    };
+    const int runs = testRuns(4, 2);
+    for (const auto& scene : cases) {
+        int right = 0;
+        for (int seed = 0; seed < runs; ++seed) {
+            SceneParams sp;
+            sp.seed = seed;
+            scene.second(sp);
+            const SyntheticScene s = generateScene(sp);
+            const Report r = estimateRelativeMotion(s.points1, s.points2, s.cameraMatrix, Params());
+            if (r.status != STATUS_SUCCESS)
+                continue;
+            const MotionError e = compareMotion(r.R, r.t, s.R, s.t);
+            const bool isRight = e.rotationDeg <= 5.0 && e.translationDeg <= 15.0;
+            EXPECT_TRUE(isRight) << scene.first << " seed " << seed << ": " << e.rotationDeg
+                                 << " deg, " << e.translationDeg << " deg off, returned";
+            right += isRight;
+        }
+        EXPECT_GE(right, runs - 1) << scene.first;
+    }
 }
 
 TEST(Rcme_FailureSignals, statusToString_names_the_new_status)

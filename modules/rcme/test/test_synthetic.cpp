@@ -116,6 +116,9 @@ TEST(Rcme_Synthetic, defaults_are_the_documented_ones)
     EXPECT_EQ(50.0, p.corridorDepth);
     EXPECT_EQ(4.0, p.corridorWidth);
     EXPECT_EQ(3.0, p.corridorHeight);
+    EXPECT_EQ(1.0, p.inlierRegion);
+    EXPECT_EQ(0.0, p.planeRelief);
+    EXPECT_FALSE(p.forwardMotion);
 
     const MotionError e;
     EXPECT_TRUE(std::isnan(e.dq));
@@ -490,6 +493,67 @@ TEST(Rcme_Synthetic, generic_scene_depths_and_motion)
     }
 }
 
+TEST(Rcme_Synthetic, inliers_in_a_region_of_image_1_outliers_everywhere)
+{
+    for (SceneKind kind : {SCENE_CORRIDOR, SCENE_GENERIC})
+        for (int seed = 0; seed < 3; ++seed) {
+            SceneParams p = makeParams(kind, seed, 400, 0.5);
+            p.inlierRegion = 0.5;
+            const SyntheticScene s = generateScene(p);
+            EXPECT_EQ(200, countNonZero(s.inlierMask));
+            int outliersElsewhere = 0;
+            for (int i = 0; i < s.points1.rows; ++i) {
+                const double x = s.points1.at<double>(i, 0), y = s.points1.at<double>(i, 1);
+                const bool inRegion = x < 320 && y < 240;
+                if (s.inlierMask.at<uchar>(i))
+                    EXPECT_TRUE(inRegion) << "inlier " << i << " at " << x << ", " << y;
+                else
+                    outliersElsewhere += !inRegion;
+            }
+            EXPECT_GT(outliersElsewhere, 100); // about 3/4 of 200
+        }
+}
+
+TEST(Rcme_Synthetic, plane_relief_moves_points_off_the_plane_within_the_bound)
+{
+    // x2 = R x1 + t, |t| = baseline = 1: triangulated points are in metres, camera 1's frame.
+    const Vec3d normal = normalize(Vec3d(0.1, -0.2, 1.0));
+    for (double relief : {0.0, 0.5}) {
+        SceneParams p = makeParams(SCENE_PLANE, 2, 300, 1.0, 0.0);
+        p.planeRelief = relief;
+        double largest = 0;
+        for (const Point3d& x : triangulateInliers(generateScene(p)))
+            largest = std::max(largest, std::abs(normal.dot(Vec3d(x)) - 12.0));
+        if (relief == 0)
+            EXPECT_LT(largest, 1e-6);
+        else {
+            EXPECT_LE(largest, relief + 1e-6);
+            EXPECT_GT(largest, 0.4 * relief);
+        }
+    }
+    // Without relief no draw is added: the plane's scenes are those of before the field.
+    SceneParams flat = makeParams(SCENE_PLANE, 4, 50), rough = flat;
+    rough.planeRelief = 0.01;
+    EXPECT_GT(maxAbsDiff(generateScene(flat).points1, generateScene(rough).points1), 0);
+}
+
+TEST(Rcme_Synthetic, forward_motion_puts_the_epipole_near_the_image_centre)
+{
+    for (int seed = 0; seed < 100; ++seed)
+        for (SceneKind kind : {SCENE_GENERIC, SCENE_PLANE}) {
+            SceneParams p = makeParams(kind, seed, 10);
+            p.forwardMotion = true;
+            const SyntheticScene forward = generateScene(p);
+            // The translation within 30 deg of the optical axis: 17 deg of jitter, 6 of tilt.
+            EXPECT_GT(std::abs(forward.t.at<double>(2)), std::cos(30 * CV_PI / 180))
+                << "seed " << seed;
+            const MotionError e =
+                compareMotion(forward.R, forward.t, Mat::eye(3, 3, CV_64F), forward.t);
+            EXPECT_GE(e.rotationDeg, 3.0) << "seed " << seed;
+            EXPECT_LT(e.rotationDeg, 16.0) << "seed " << seed;
+        }
+}
+
 TEST(Rcme_Synthetic, larger_baseline_fits_in_the_corridor)
 {
     SceneParams p = makeParams(SCENE_CORRIDOR, 1, 300, 0.5, 0.0);
@@ -528,6 +592,11 @@ TEST(Rcme_Synthetic, bad_parameters_throw_naming_the_field)
     run([](SceneParams& p) { p.corridorDepth = -50; }, "corridorDepth");
     run([](SceneParams& p) { p.corridorWidth = 0; }, "corridorWidth");
     run([&](SceneParams& p) { p.corridorHeight = nan; }, "corridorHeight");
+    run([](SceneParams& p) { p.inlierRegion = 0; }, "inlierRegion");
+    run([](SceneParams& p) { p.inlierRegion = 1.5; }, "inlierRegion");
+    run([&](SceneParams& p) { p.inlierRegion = nan; }, "inlierRegion");
+    run([](SceneParams& p) { p.planeRelief = -0.1; }, "planeRelief");
+    run([&](SceneParams& p) { p.planeRelief = inf; }, "planeRelief");
     run(
         [](SceneParams& p) {
             p.kind = SCENE_GENERIC;

@@ -48,6 +48,17 @@ struct CV_EXPORTS_W_SIMPLE SceneParams
     CV_PROP_RW double corridorDepth;  //!< length of the corridor; 50
     CV_PROP_RW double corridorWidth;  //!< distance between the left and right walls; 4
     CV_PROP_RW double corridorHeight; //!< distance between the floor and the ceiling; 3
+    /** the inliers are the scene points seen in the top-left inlierRegion x inlierRegion part of
+    image 1 (0.5: one quadrant), the outliers still fill both images; in (0, 1], default 1 (the
+    whole image) */
+    CV_PROP_RW double inlierRegion;
+    /** #SCENE_PLANE only: each point leaves the plane along its normal by a uniform offset in
+    [-planeRelief, planeRelief] metres (a near-planar scene, little parallax off the plane);
+    >= 0, default 0 */
+    CV_PROP_RW double planeRelief;
+    /** all kinds but #SCENE_CORRIDOR: camera 2 moves along camera 1's optical axis (the epipole
+    near the image centre) instead of sideways; default false */
+    CV_PROP_RW bool forwardMotion;
 };
 
 //! A generated two-view scene with its ground truth.
