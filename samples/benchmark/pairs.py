@@ -29,6 +29,7 @@ class Pair:
     gt_points: object = None   # true correspondences [x1 y1 x2 y2] to score F-only pairs
     note: str = ""
     sigma: object = None       # noise of the pair when known (corridor), else the run's sigma
+    iterations: object = None  # the case's own N when it fixes one (a hard case), else the run's
     # F-only pairs whose true matches cannot tell F's epipole (metrics.epipole_blind): their
     # runs are neither right nor wrong in the confusion table
     unjudgeable: bool = False

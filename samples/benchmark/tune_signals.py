@@ -35,7 +35,7 @@ def tuning_pairs():
 def record(pair):
     """The run's status, whether its motion (or the one it turned down) is wrong, and the
     measures the signals read."""
-    params = methods.rcme_params(None, methods.Budget(1000, pair.sigma, 0))
+    params = methods.rcme_params(None, methods.Budget(pair.iterations or 1000, pair.sigma, 0))
     params.ambiguityMargin, params.maxRotationStdDeg, params.maxTranslationStdDeg = 1e-9, 0, 0
     r = rcme.estimateRelativeMotion(pair.points1, pair.points2, pair.K, params)
     ok = r.status == rcme.STATUS_SUCCESS

@@ -40,7 +40,8 @@ def main(rates):
         methods.rcme_params = with_rate
         for label, pairs in suites():
             rows = [evaluate.evaluate(methods.DEFAULT_METHOD, pair,
-                                      methods.Budget(1000, pair.sigma, 0, adaptive=True))
+                                      methods.Budget(pair.iterations or 1000, pair.sigma, 0,
+                                                     adaptive=True))
                     for pair in pairs]
             counts = report.confusion_counts(rows)
             ms = np.median([1000 * r["seconds"] for r in rows])
