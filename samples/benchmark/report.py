@@ -312,7 +312,10 @@ def confusion_summary(groups, method_names):
             counts = confusion_counts(_select(rows, method=method))
             if sum(counts.values()):
                 r = confusion_rates(counts)
-                lines.append([label, method, r["runs"], counts["unjudgeable"], r["undetected"],
-                              r["caught"], r["false_alarm"]])
-    return _table(["suite", "method", "judged runs", "unjudgeable runs", "undetected % of runs",
+                cells = "%d / %d / %d / %d" % tuple(counts[key] for key in (
+                    "returned_right", "returned_wrong", "flagged_wrong", "flagged_right"))
+                lines.append([label, method, r["runs"], counts["unjudgeable"], cells,
+                              r["undetected"], r["caught"], r["false_alarm"]])
+    return _table(["suite", "method", "judged runs", "unjudgeable runs",
+                   "right / undetected / caught / false alarm", "undetected % of runs",
                    "caught % of wrong", "false alarms % of right"], lines)
