@@ -134,9 +134,10 @@ const char* kindName(SceneKind kind)
 
 std::string describe(const SceneParams& p)
 {
-    return format("kind=%s, corridor %gx%gx%g m (WxHxD), baseline=%g m, f=%g px, image %dx%d",
+    return format("kind=%s, corridor %gx%gx%g m (WxHxD), baseline=%g m, f=%g px, image %dx%d, "
+                  "inlierRegion=%g",
                   kindName(p.kind), p.corridorWidth, p.corridorHeight, p.corridorDepth, p.baseline,
-                  p.focalLength, p.imageWidth, p.imageHeight);
+                  p.focalLength, p.imageWidth, p.imageHeight, p.inlierRegion);
 }
 
 // Camera-to-world rotation of a camera looking along +Z, turned by random yaw (about Y), pitch
