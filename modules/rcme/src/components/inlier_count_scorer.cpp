@@ -48,6 +48,7 @@ public:
     {
         return scoreOf(bandInliers);
     }
+
     void classify(const TwoViewData& data, const Model& model, std::vector<uchar>& mask) override
     {
         mask.resize(data.points1.size());

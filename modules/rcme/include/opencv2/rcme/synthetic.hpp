@@ -56,7 +56,7 @@ struct CV_EXPORTS_W_SIMPLE SceneParams
     [-planeRelief, planeRelief] metres (a near-planar scene, little parallax off the plane);
     >= 0, default 0 */
     CV_PROP_RW double planeRelief;
-    /** all kinds but #SCENE_CORRIDOR: camera 2 moves along camera 1's optical axis (the epipole
+    /** #SCENE_GENERIC and #SCENE_PLANE: camera 2 moves along camera 1's optical axis (the epipole
     near the image centre) instead of sideways; default false */
     CV_PROP_RW bool forwardMotion;
 };
