@@ -79,9 +79,9 @@ std::unique_ptr<Termination> createEntropyTermination(std::unique_ptr<Terminatio
 //! Params::degeneracyTest: a homography against the final inliers (homography_comparison.cpp).
 std::unique_ptr<EstimateTest> createHomographyDegeneracyTest();
 //! Params::ambiguityMargin (> 0), calibrated data; needs EstimatorComponents::tracksRivals.
-std::unique_ptr<EstimateTest> createAmbiguityTest(double margin);
+std::unique_ptr<EstimateTest> createRivalMotionDecision(double margin);
 //! Params::maxRotationStdDeg, maxTranslationStdDeg (each <= 0: off), calibrated data.
-std::unique_ptr<EstimateTest> createUncertaintyTest(double maxRotationStdDeg,
+std::unique_ptr<EstimateTest> createUncertaintyBound(double maxRotationStdDeg,
                                                     double maxTranslationStdDeg);
 
 } // namespace detail

@@ -157,12 +157,12 @@ EstimatorComponents createEstimator(const Params& params, const TwoViewData& dat
         c.degeneracy = createHomographyDegeneracyTest();
     // The final tests weigh motions: F alone has no rotation or translation to bound.
     if (data.calibrated && params.ambiguityMargin > 0) {
-        c.finalTests.push_back(createAmbiguityTest(params.ambiguityMargin));
+        c.finalTests.push_back(createRivalMotionDecision(params.ambiguityMargin));
         c.tracksRivals = true;
     }
     if (data.calibrated && (params.maxRotationStdDeg > 0 || params.maxTranslationStdDeg > 0))
         c.finalTests.push_back(
-            createUncertaintyTest(params.maxRotationStdDeg, params.maxTranslationStdDeg));
+            createUncertaintyBound(params.maxRotationStdDeg, params.maxTranslationStdDeg));
     return c;
 }
 

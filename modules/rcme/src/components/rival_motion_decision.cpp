@@ -1,9 +1,9 @@
 // This file is part of the rcme module. It is subject to the license terms in the LICENSE file
 // found in the top-level directory of this distribution.
 
-// The ambiguity test (Params::ambiguityMargin; calibrated data): the data hold two answers when a
-// distinct motion the loop saw (RivalMotions), refitted on the points it explains itself, costs
-// about as little as the selected one.
+// The rival motion decision (the ambiguity test of Params::ambiguityMargin; calibrated data): the
+// data hold two answers when a distinct motion the loop saw (RivalMotions), refitted on the points
+// it explains itself, costs about as little as the selected one.
 
 #include "components/motion_support.hpp"
 #include "framework/component_factories.hpp"
@@ -23,10 +23,10 @@ it is then finalized in its turn), and when a distinct one comes within the marg
 (result.rivalCostGap below the margin) the data do not tell the two: STATUS_UNDETERMINED_MOTION,
 the kept motion being result.rejected. Not on a planar scene's motion (its rivals are the
 homography's decompositions, weighed by the degeneracy test). */
-class AmbiguityTest : public EstimateTest
+class RivalMotionDecision : public EstimateTest
 {
 public:
-    explicit AmbiguityTest(double margin) : margin_(margin) {}
+    explicit RivalMotionDecision(double margin) : margin_(margin) {}
 
     void apply(const TwoViewData& data, EstimatorComponents& c, RansacResult& result) override
     {
@@ -101,9 +101,9 @@ private:
 
 } // namespace
 
-std::unique_ptr<EstimateTest> createAmbiguityTest(double margin)
+std::unique_ptr<EstimateTest> createRivalMotionDecision(double margin)
 {
-    return std::make_unique<AmbiguityTest>(margin);
+    return std::make_unique<RivalMotionDecision>(margin);
 }
 
 } // namespace detail

@@ -1,7 +1,7 @@
 // This file is part of the rcme module. It is subject to the license terms in the LICENSE file
 // found in the top-level directory of this distribution.
 
-// The uncertainty test (Params::maxRotationStdDeg, maxTranslationStdDeg; calibrated data): a
+// The uncertainty bound (Params::maxRotationStdDeg, maxTranslationStdDeg; calibrated data): a
 // motion whose propagated standard deviation of a rotation axis, or of the translation direction,
 // exceeds its bound is not determined to the asked accuracy: STATUS_UNDETERMINED_MOTION. It reads
 // the final covariance (Params::refine).
@@ -16,11 +16,11 @@ namespace detail {
 
 namespace {
 
-class UncertaintyTest : public EstimateTest
+class UncertaintyBound : public EstimateTest
 {
 public:
     // A bound <= 0 is off.
-    UncertaintyTest(double maxRotationStdDeg, double maxTranslationStdDeg)
+    UncertaintyBound(double maxRotationStdDeg, double maxTranslationStdDeg)
         : maxRotationStdDeg_(maxRotationStdDeg), maxTranslationStdDeg_(maxTranslationStdDeg)
     {
     }
@@ -54,10 +54,10 @@ private:
 
 } // namespace
 
-std::unique_ptr<EstimateTest> createUncertaintyTest(double maxRotationStdDeg,
+std::unique_ptr<EstimateTest> createUncertaintyBound(double maxRotationStdDeg,
                                                     double maxTranslationStdDeg)
 {
-    return std::make_unique<UncertaintyTest>(maxRotationStdDeg, maxTranslationStdDeg);
+    return std::make_unique<UncertaintyBound>(maxRotationStdDeg, maxTranslationStdDeg);
 }
 
 } // namespace detail
