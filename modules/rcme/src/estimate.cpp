@@ -6,8 +6,8 @@
 
 #include "precomp.hpp"
 
+#include "framework/estimation_pipeline.hpp"
 #include "framework/estimator_factory.hpp"
-#include "framework/ransac_loop.hpp"
 #include "geometry/epipolar.hpp"
 #include "geometry/motion_parameterization.hpp"
 
@@ -77,7 +77,8 @@ Estimation estimate(InputArray points1, InputArray points2, InputArray cameraMat
     if (params.timeBudget > 0)
         components.deadline =
             start + static_cast<int64>(std::min(params.timeBudget, 1e9) * getTickFrequency());
-    const detail::RansacResult result = detail::estimateModel(data, components);
+    const detail::Estimation estimation = detail::estimateModel(data, components);
+    const detail::Estimate& result = estimation.estimate;
 
     Estimation out;
     Report& report = out.report;
@@ -96,8 +97,8 @@ Estimation estimate(InputArray points1, InputArray points2, InputArray cameraMat
     }
     if (result.status != STATUS_SUCCESS && result.hasRejected)
         setRejected(report, result.rejected);
-    report.iterations = result.iterations;
-    report.pointsPerHypothesis = result.pointsPerHypothesis;
+    report.iterations = estimation.search.iterations;
+    report.pointsPerHypothesis = estimation.search.pointsPerHypothesis;
     report.meanEntropy = result.score.meanEntropy;
     report.rivalCostGap = result.rivalCostGap;
     report.inlierCount = static_cast<int>(std::count(out.mask.begin(), out.mask.end(), 1));

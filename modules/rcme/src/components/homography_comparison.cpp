@@ -15,7 +15,6 @@
 #include "components/homography_comparison.hpp"
 #include "framework/component_factories.hpp"
 #include "framework/model_space.hpp"
-#include "framework/ransac_loop.hpp"
 #include "geometry/epipolar.hpp"
 #include "geometry/motion_parameterization.hpp"
 #include "geometry/statistics.hpp"
@@ -325,21 +324,23 @@ namespace {
 
 // The post-loop test of Params::degeneracyTest: the comparison above, and what the model space
 // leaves determined when the homography wins.
-class HomographyDegeneracyTest : public EstimateTest
+class HomographyDegeneracyTest final : public EstimationStage
 {
 public:
-    void apply(const TwoViewData& data, EstimatorComponents& c, RansacResult& result) override
+    StageOutcome run(const StageContext& context, const Estimate& estimate) override
     {
         const HomographyComparison homography =
-            compareWithHomography(data, result.model.F, result.mask);
-        if (homography.homographyExplainsInliers)
-            c.space->resolveHomography(data, c, homography.H, result);
+            compareWithHomography(context.data, estimate.model.F, estimate.mask);
+        if (!homography.homographyExplainsInliers)
+            return {};
+        return context.space.resolveHomography(context.data, context.scorer, homography.H,
+                                               estimate);
     }
 };
 
 } // namespace
 
-std::unique_ptr<EstimateTest> createHomographyDegeneracyTest()
+std::unique_ptr<EstimationStage> createHomographyDegeneracyTest()
 {
     return std::make_unique<HomographyDegeneracyTest>();
 }

@@ -8,6 +8,7 @@
 #include "components/motion_support.hpp"
 #include "framework/component_factories.hpp"
 #include "framework/ransac_loop.hpp"
+#include "framework/refinement.hpp"
 #include "geometry/epipolar.hpp"
 
 namespace cv {
@@ -16,23 +17,24 @@ namespace detail {
 
 namespace {
 
-/* Each rival motion of the loop (result.rivals) with at least half the selected model's support
-and distinct from it is refitted on the points it explains itself; the motion of least truncated
-cost is kept (a rival can beat the selected one: the loop scores raw minimal-sample hypotheses;
-it is then finalized in its turn), and when a distinct one comes within the margin of it
-(result.rivalCostGap below the margin) the data do not tell the two: STATUS_UNDETERMINED_MOTION,
-the kept motion being result.rejected. Not on a planar scene's motion (its rivals are the
+/* Each rival motion of the loop (SearchResult::rivals) with at least half the selected model's
+support and distinct from it is refitted on the points it explains itself; the motion of least
+truncated cost is kept (a rival can beat the selected one: the loop scores raw minimal-sample
+hypotheses; it then gets its own final fit), and when a distinct one comes within the margin of it
+(Estimate::rivalCostGap below the margin) the data do not tell the two: STATUS_UNDETERMINED_MOTION,
+the kept motion being the one turned down. Not on a planar scene's motion (its rivals are the
 homography's decompositions, weighed by the degeneracy test). */
-class RivalMotionDecision : public EstimateTest
+class RivalMotionDecision final : public EstimationStage
 {
 public:
     explicit RivalMotionDecision(double margin) : margin_(margin) {}
 
-    void apply(const TwoViewData& data, EstimatorComponents& c, RansacResult& result) override
+    StageOutcome run(const StageContext& context, const Estimate& estimate) override
     {
+        const TwoViewData& data = context.data;
         constexpr double kSupportShare = 0.5; // as RivalMotions' gate
-        if (!result.model.hasMotion || result.planar)
-            return;
+        if (!estimate.model.hasMotion || estimate.planar)
+            return {};
         // The cost is MSAC's, without the planar test's cheirality term: the depth sign of far
         // points flips with the noise, and counting them as outliers handed small-baseline
         // corridors to mirrored rivals. The four motions of one E share that cost, so a refitted
@@ -45,18 +47,18 @@ public:
                                        ? evenlySpacedSubset(data, kMaxIteratedPoints)
                                        : TwoViewData();
         const TwoViewData& fitData = subset.points1.empty() ? data : subset;
-        std::vector<Model> motions{result.model};
-        std::vector<double> costs{truncatedCost(data, result.model.F)};
+        std::vector<Model> motions{estimate.model};
+        std::vector<double> costs{truncatedCost(data, estimate.model.F)};
         std::vector<uchar> within, inFront;
-        for (const RivalMotions::Rival& rival : result.rivals) {
-            if (rival.score.inlierCount < kSupportShare * result.score.inlierCount ||
-                !areDistinctMotions(rival.model, result.model))
+        for (const RivalMotions::Rival& rival : context.search.rivals) {
+            if (rival.score.inlierCount < kSupportShare * estimate.score.inlierCount ||
+                !areDistinctMotions(rival.model, estimate.model))
                 continue;
             Model refitted = rival.model;
             if (refitOnOwnPoints(fitData, refitted, within, inFront).support <= 0)
                 continue;
             if (recoverMotion(fitData, within, refitted) &&
-                areDistinctMotions(refitted, result.model)) {
+                areDistinctMotions(refitted, estimate.model)) {
                 motions.push_back(refitted);
                 costs.push_back(truncatedCost(data, refitted.F));
             }
@@ -65,18 +67,17 @@ public:
         for (size_t m = 1; m < motions.size(); ++m)
             if (costs[m] < costs[best])
                 best = m;
+        StageOutcome outcome;
         if (best != 0) {
-            // A rival explains the data better than the loop's choice: it becomes the estimate.
-            Model chosen = motions[best];
-            std::vector<uchar> mask;
-            c.scorer->classify(data, chosen, mask);
-            const Score score = c.scorer->score(data, chosen);
-            if (score.isCandidate) {
-                result.model = chosen;
-                result.mask = mask;
-                result.score = score;
-                finalizeModel(data, c, result);
-                costs[best] = truncatedCost(data, result.model.F);
+            // A rival explains the data better than the loop's choice: it becomes the estimate,
+            // with its own final fit.
+            Fit chosen{motions[best], Score(), {}};
+            context.scorer.classify(data, chosen.model, chosen.inliers);
+            chosen.score = context.scorer.score(data, chosen.model);
+            if (chosen.score.isCandidate) {
+                context.refinement.finalFit(data, chosen.model, chosen.inliers);
+                costs[best] = truncatedCost(data, chosen.model.F);
+                outcome = StageOutcome::revised(std::move(chosen));
             } else {
                 best = 0;
             }
@@ -85,14 +86,16 @@ public:
         for (size_t m = 0; m < motions.size(); ++m)
             if (m != best && areDistinctMotions(motions[m], motions[best]))
                 gap = std::min(gap, (costs[m] - costs[best]) / (data.sigma * data.sigma));
-        result.rivalCostGap = std::max(0.0, gap);
-        if (result.rivalCostGap < margin_)
-            rejectModel(result, STATUS_UNDETERMINED_MOTION,
-                        cv::format("a distinct motion explains the inliers about as well (cost gap "
-                                   "%.1f sigma^2 < Params.ambiguityMargin %.1f): the motion is not "
-                                   "determined",
-                                   result.rivalCostGap, margin_),
-                        result.model);
+        const double rivalCostGap = std::max(0.0, gap);
+        outcome.rivalCostGap = rivalCostGap;
+        if (rivalCostGap < margin_)
+            outcome.verdict = Verdict{
+                STATUS_UNDETERMINED_MOTION,
+                cv::format("a distinct motion explains the inliers about as well (cost gap %.1f "
+                           "sigma^2 < Params.ambiguityMargin %.1f): the motion is not determined",
+                           rivalCostGap, margin_),
+                outcome.model ? *outcome.model : estimate.model};
+        return outcome;
     }
 
 private:
@@ -101,7 +104,7 @@ private:
 
 } // namespace
 
-std::unique_ptr<EstimateTest> createRivalMotionDecision(double margin)
+std::unique_ptr<EstimationStage> createRivalMotionDecision(double margin)
 {
     return std::make_unique<RivalMotionDecision>(margin);
 }

@@ -7,7 +7,6 @@
 // the final covariance (Params::refine).
 
 #include "framework/component_factories.hpp"
-#include "framework/ransac_loop.hpp"
 #include "geometry/motion_parameterization.hpp"
 
 namespace cv {
@@ -16,7 +15,7 @@ namespace detail {
 
 namespace {
 
-class UncertaintyBound : public EstimateTest
+class UncertaintyBound final : public EstimationStage
 {
 public:
     // A bound <= 0 is off.
@@ -25,27 +24,33 @@ public:
     {
     }
 
-    void apply(const TwoViewData&, EstimatorComponents&, RansacResult& result) override
+    StageOutcome run(const StageContext&, const Estimate& estimate) override
     {
-        const Model& model = result.model;
+        const Model& model = estimate.model;
         if (model.uncertaintyDof != MotionTangent::kDof)
-            return;
+            return {};
         const Eigen::Matrix<double, 5, 5> covariance = model.covariance.topLeftCorner<5, 5>();
-        const double rotationStd = rotationStdDeg(covariance).maxCoeff();
-        const double translationStd = translationDirectionStdDeg(covariance);
-        if (maxRotationStdDeg_ > 0 && rotationStd > maxRotationStdDeg_)
-            rejectModel(result, STATUS_UNDETERMINED_MOTION,
-                        cv::format("the rotation's standard deviation %.2f deg exceeds "
-                                   "Params.maxRotationStdDeg %.2f: the motion is not determined",
-                                   rotationStd, maxRotationStdDeg_),
-                        model);
-        else if (maxTranslationStdDeg_ > 0 && translationStd > maxTranslationStdDeg_)
-            rejectModel(
-                result, STATUS_UNDETERMINED_MOTION,
-                cv::format("the translation direction's standard deviation %.2f deg exceeds "
-                           "Params.maxTranslationStdDeg %.2f: the motion is not determined",
-                           translationStd, maxTranslationStdDeg_),
-                model);
+        const struct
+        {
+            const char* what;
+            double stdDeg;
+            const char* field;
+            double bound;
+        } checks[] = {
+            {"rotation", rotationStdDeg(covariance).maxCoeff(), "maxRotationStdDeg",
+             maxRotationStdDeg_},
+            {"translation direction", translationDirectionStdDeg(covariance),
+             "maxTranslationStdDeg", maxTranslationStdDeg_},
+        };
+        for (const auto& check : checks)
+            if (check.bound > 0 && check.stdDeg > check.bound)
+                return StageOutcome::rejecting(
+                    STATUS_UNDETERMINED_MOTION,
+                    cv::format("the %s's standard deviation %.2f deg exceeds Params.%s %.2f: the "
+                               "motion is not determined",
+                               check.what, check.stdDeg, check.field, check.bound),
+                    model);
+        return {};
     }
 
 private:
@@ -54,8 +59,8 @@ private:
 
 } // namespace
 
-std::unique_ptr<EstimateTest> createUncertaintyBound(double maxRotationStdDeg,
-                                                    double maxTranslationStdDeg)
+std::unique_ptr<EstimationStage> createUncertaintyBound(double maxRotationStdDeg,
+                                                        double maxTranslationStdDeg)
 {
     return std::make_unique<UncertaintyBound>(maxRotationStdDeg, maxTranslationStdDeg);
 }

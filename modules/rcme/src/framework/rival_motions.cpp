@@ -1,7 +1,7 @@
 // This file is part of the rcme module. It is subject to the license terms in the LICENSE file
 // found in the top-level directory of this distribution.
 
-#include "components/rival_motions.hpp"
+#include "framework/rival_motions.hpp"
 
 namespace cv {
 namespace rcme {
