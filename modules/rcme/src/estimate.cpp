@@ -88,12 +88,12 @@ Estimation estimate(InputArray points1, InputArray points2, InputArray cameraMat
     report.message = result.message;
     if (result.status == STATUS_SUCCESS) {
         setEstimate(report, result.model);
-    } else if (result.status == STATUS_PURE_ROTATION) {
+    } else if (result.status == STATUS_PURE_ROTATION && result.rotation) {
         // R only: the translation is not determined, reported as zero; F and E stay empty.
-        report.R = toMat(result.model.R);
+        report.R = toMat(result.rotation->R);
         report.t = Mat::zeros(3, 1, CV_64F);
-        if (result.model.uncertaintyDof == 3)
-            report.covariance = toMat(result.model.covariance.topLeftCorner<3, 3>());
+        if (result.rotation->covariance)
+            report.covariance = toMat(*result.rotation->covariance);
     }
     if (result.status != STATUS_SUCCESS && result.hasRejected)
         setRejected(report, result.rejected);

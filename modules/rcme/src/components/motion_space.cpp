@@ -127,8 +127,8 @@ public:
     }
 
     // A rotation that explains the inliers as well as the motion gives STATUS_PURE_ROTATION
-    // (model.R, t zero, the rotation's 3x3 covariance as uncertaintyDof 3); otherwise the scene is
-    // planar (or nearly) and its motion is resolvePlanarMotion's.
+    // (the rotation and its covariance, the motion turned down); otherwise the scene is planar (or
+    // nearly) and its motion is resolvePlanarMotion's.
     StageOutcome resolveHomography(const TwoViewData& data, Scorer& scorer,
                                    const Eigen::Matrix3d& H,
                                    const Estimate& estimate) const override
@@ -137,14 +137,10 @@ public:
         if (!rotation.rotationExplainsInliers)
             return resolvePlanarMotion(data, scorer, H, estimate);
         StageOutcome outcome;
-        Model& pure = outcome.model.emplace();
-        pure.hasMotion = true;
+        Rotation& pure = outcome.rotation.emplace();
         pure.R = rotation.R;
-        pure.t.setZero();
-        if (rotation.hasCovariance) {
-            pure.uncertaintyDof = 3;
-            pure.covariance.topLeftCorner<3, 3>() = rotation.covariance;
-        }
+        if (rotation.hasCovariance)
+            pure.covariance = rotation.covariance;
         outcome.inliers = std::move(rotation.inliers);
         outcome.verdict = Verdict{STATUS_PURE_ROTATION,
                                   "a rotation about the camera centre explains the inliers as well "

@@ -28,6 +28,14 @@ struct Fit
     std::vector<uchar> inliers;
 };
 
+//! What a pure rotation determines: R (x2 ~ K R K^-1 x1), not t.
+struct Rotation
+{
+    Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
+    //! sigma^2 (J^T J)^-1 of the rotation increment omega, R exp([omega]x), when determined.
+    std::optional<Eigen::Matrix3d> covariance;
+};
+
 //! A stage's decision on the estimate: its status and the reason, and the model it turns down.
 struct Verdict
 {
@@ -52,6 +60,8 @@ struct StageOutcome
     std::optional<double> rivalCostGap;
     //! recoverPose's mask (Estimate::inFront).
     std::optional<std::vector<uchar>> inFront;
+    //! What is determined instead of the motion (Estimate::rotation).
+    std::optional<Rotation> rotation;
 
     //! The outcome that replaces the estimate with `fit`.
     static StageOutcome revised(Fit fit)
@@ -84,6 +94,8 @@ struct Estimate
     bool hasRejected = false;
     Model rejected;      //!< with hasRejected: Verdict::rejected of the failure
     bool planar = false; //!< StageOutcome::planar
+    //! With STATUS_PURE_ROTATION: the rotation, which replaces the motion (the rejected model).
+    std::optional<Rotation> rotation;
     /** The rival motion decision's measure: (C_rival - C) / sigma^2, C the truncated cost (MSAC,
     a point behind a camera costing as an outlier) of the returned motion and C_rival that of the
     best distinct rival, refitted; +inf when no rival came close, NaN when it did not run. */

@@ -27,6 +27,8 @@ void apply(StageOutcome& outcome, Estimate& estimate)
         estimate.rivalCostGap = *outcome.rivalCostGap;
     if (outcome.inFront)
         estimate.inFront = std::move(*outcome.inFront);
+    if (outcome.rotation)
+        estimate.rotation = std::move(*outcome.rotation);
     if (!outcome.verdict)
         return;
     Verdict& verdict = *outcome.verdict;
