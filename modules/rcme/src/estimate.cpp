@@ -45,10 +45,10 @@ void setMotionUncertainty(const Eigen::Matrix<double, 5, 5>& covariance, Report&
 void setEstimate(Report& report, const detail::Model& model)
 {
     report.F = toMat(model.F);
-    if (model.hasMotion) {
-        report.E = toMat(detail::skew(model.t) * model.R);
-        report.R = toMat(model.R);
-        report.t = toMat(model.t);
+    if (model.motion) {
+        report.E = toMat(detail::skew(model.motion->t) * model.motion->R);
+        report.R = toMat(model.motion->R);
+        report.t = toMat(model.motion->t);
         if (model.uncertaintyDof == detail::MotionTangent::kDof)
             setMotionUncertainty(model.covariance.topLeftCorner<5, 5>(), report);
     }
@@ -61,9 +61,9 @@ void setRejected(Report& report, const detail::Model& model)
     if (!model.F.allFinite() || model.F.isZero())
         return;
     report.rejectedF = toMat(model.F);
-    if (model.hasMotion) {
-        report.rejectedR = toMat(model.R);
-        report.rejectedT = toMat(model.t);
+    if (model.motion) {
+        report.rejectedR = toMat(model.motion->R);
+        report.rejectedT = toMat(model.motion->t);
     }
 }
 

@@ -303,17 +303,18 @@ std::vector<Model> homographyMotions(const TwoViewData& data, const Eigen::Matri
     decomposeHomographyMat(Hmat, Kmat, rotations, translations, normals);
     std::vector<Model> motions;
     for (size_t s = 0; s < rotations.size(); ++s) {
-        Model m;
+        Motion motion;
         for (int r = 0; r < 3; ++r) {
             for (int c = 0; c < 3; ++c)
-                m.R(r, c) = rotations[s].at<double>(r, c);
-            m.t(r) = translations[s].at<double>(r);
+                motion.R(r, c) = rotations[s].at<double>(r, c);
+            motion.t(r) = translations[s].at<double>(r);
         }
-        if (!(m.t.norm() > 1e-9) || !m.R.allFinite())
+        if (!(motion.t.norm() > 1e-9) || !motion.R.allFinite())
             continue; // a rotation alone: no motion direction to start from
-        m.t.normalize();
-        m.hasMotion = true;
-        m.E = skew(m.t) * m.R;
+        motion.t.normalize();
+        Model m;
+        m.motion = motion;
+        m.E = skew(motion.t) * motion.R;
         m.F = fundamentalFromEssential(m.E, data.Kinv);
         motions.push_back(m);
     }

@@ -38,11 +38,10 @@ constexpr double kAmbiguousCostGap = 10.0;
 bool decideMotionOnInliers(const TwoViewData& data, Scorer& scorer, Fit& fit)
 {
     Model& model = fit.model;
-    const Eigen::Matrix3d R = model.R;
-    const Eigen::Vector3d t = model.t;
+    const Motion before = *model.motion;
     if (!recoverMotion(data, fit.inliers, model))
         return false;
-    if ((model.R - R).norm() < 1e-9 && (model.t - t).norm() < 1e-9)
+    if ((model.motion->R - before.R).norm() < 1e-9 && (model.motion->t - before.t).norm() < 1e-9)
         return true;
     if (model.uncertaintyDof > 0) {
         std::vector<int> inliers;
@@ -101,19 +100,19 @@ public:
                         std::vector<Eigen::Vector2d>& points1,
                         std::vector<Eigen::Vector2d>& points2) const override
     {
-        return model.hasMotion || recoverMotionFromSample(data, sample, model, points1, points2);
+        return model.motion || recoverMotionFromSample(data, sample, model, points1, points2);
     }
 
     bool liftOn(const TwoViewData& data, const std::vector<uchar>& inliers, Model& model,
                 bool redecide) const override
     {
-        return (model.hasMotion && !redecide) || recoverMotion(data, inliers, model);
+        return (model.motion && !redecide) || recoverMotion(data, inliers, model);
     }
 
     std::optional<Verdict> settleSelected(const TwoViewData& data, const Refinement& refinement,
                                           Scorer& scorer, Fit& selected) const override
     {
-        if (!selected.model.hasMotion) {
+        if (!selected.model.motion) {
             // The (refined) F becomes a motion: the closest essential matrix, decomposed with
             // cheirality, then refined in motion space. Refining F first matters: the F of a
             // noisy minimal sample is far from any essential matrix.
@@ -156,8 +155,8 @@ public:
         StageOutcome outcome;
         std::vector<uchar>& inFront = outcome.inFront.emplace();
         if (estimate.status == STATUS_SUCCESS &&
-            countPointsInFront(estimate.model.R, estimate.model.t, data.points1, data.points2,
-                               data.Kinv, &estimate.mask, &inFront) == 0) {
+            countPointsInFront(estimate.model.motion->R, estimate.model.motion->t, data.points1,
+                               data.points2, data.Kinv, &estimate.mask, &inFront) == 0) {
             outcome.verdict =
                 Verdict{STATUS_DEGENERATE_CONFIGURATION, kNoCheirality, estimate.model};
             inFront.assign(estimate.mask.size(), 0);

@@ -33,7 +33,7 @@ public:
     {
         const TwoViewData& data = context.data;
         constexpr double kSupportShare = 0.5; // as RivalMotions' gate
-        if (!estimate.model.hasMotion || estimate.planar)
+        if (!estimate.model.motion || estimate.planar)
             return {};
         // The cost is MSAC's, without the planar test's cheirality term: the depth sign of far
         // points flips with the noise, and counting them as outliers handed small-baseline

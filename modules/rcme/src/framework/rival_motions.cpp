@@ -32,7 +32,7 @@ void RivalMotions::offer(const TwoViewData& data, const std::vector<int>& sample
         return;
     mostInliers_ = std::max(mostInliers_, score.inlierCount);
     Model motion = model;
-    if (!motion.hasMotion &&
+    if (!motion.motion &&
         !recoverMotionFromSample(data, sample, motion, samplePoints1_, samplePoints2_))
         return;
     for (Rival& rival : rivals_) {
