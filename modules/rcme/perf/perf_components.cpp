@@ -9,9 +9,9 @@
 
 #ifdef RCME_GOOGLE_BENCHMARK
 
-#include "components/random.hpp"
 #include "framework/component_factories.hpp"
 #include "framework/model_space.hpp"
+#include "framework/random.hpp"
 #include "framework/two_view_data.hpp"
 
 namespace {

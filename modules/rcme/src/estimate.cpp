@@ -6,8 +6,8 @@
 
 #include "precomp.hpp"
 
+#include "framework/estimation_pipeline.hpp"
 #include "framework/estimator_factory.hpp"
-#include "framework/ransac_loop.hpp"
 #include "geometry/epipolar.hpp"
 #include "geometry/motion_parameterization.hpp"
 
@@ -45,10 +45,10 @@ void setMotionUncertainty(const Eigen::Matrix<double, 5, 5>& covariance, Report&
 void setEstimate(Report& report, const detail::Model& model)
 {
     report.F = toMat(model.F);
-    if (model.hasMotion) {
-        report.E = toMat(detail::skew(model.t) * model.R);
-        report.R = toMat(model.R);
-        report.t = toMat(model.t);
+    if (model.motion) {
+        report.E = toMat(detail::skew(model.motion->t) * model.motion->R);
+        report.R = toMat(model.motion->R);
+        report.t = toMat(model.motion->t);
         if (model.uncertaintyDof == detail::MotionTangent::kDof)
             setMotionUncertainty(model.covariance.topLeftCorner<5, 5>(), report);
     }
@@ -61,9 +61,9 @@ void setRejected(Report& report, const detail::Model& model)
     if (!model.F.allFinite() || model.F.isZero())
         return;
     report.rejectedF = toMat(model.F);
-    if (model.hasMotion) {
-        report.rejectedR = toMat(model.R);
-        report.rejectedT = toMat(model.t);
+    if (model.motion) {
+        report.rejectedR = toMat(model.motion->R);
+        report.rejectedT = toMat(model.motion->t);
     }
 }
 
@@ -77,7 +77,8 @@ Estimation estimate(InputArray points1, InputArray points2, InputArray cameraMat
     if (params.timeBudget > 0)
         components.deadline =
             start + static_cast<int64>(std::min(params.timeBudget, 1e9) * getTickFrequency());
-    const detail::RansacResult result = detail::estimateModel(data, components);
+    const detail::Estimation estimation = detail::estimateModel(data, components);
+    const detail::Estimate& result = estimation.estimate;
 
     Estimation out;
     Report& report = out.report;
@@ -87,17 +88,17 @@ Estimation estimate(InputArray points1, InputArray points2, InputArray cameraMat
     report.message = result.message;
     if (result.status == STATUS_SUCCESS) {
         setEstimate(report, result.model);
-    } else if (result.status == STATUS_PURE_ROTATION) {
+    } else if (result.status == STATUS_PURE_ROTATION && result.rotation) {
         // R only: the translation is not determined, reported as zero; F and E stay empty.
-        report.R = toMat(result.model.R);
+        report.R = toMat(result.rotation->R);
         report.t = Mat::zeros(3, 1, CV_64F);
-        if (result.model.uncertaintyDof == 3)
-            report.covariance = toMat(result.model.covariance.topLeftCorner<3, 3>());
+        if (result.rotation->covariance)
+            report.covariance = toMat(*result.rotation->covariance);
     }
     if (result.status != STATUS_SUCCESS && result.hasRejected)
         setRejected(report, result.rejected);
-    report.iterations = result.iterations;
-    report.pointsPerHypothesis = result.pointsPerHypothesis;
+    report.iterations = estimation.search.iterations;
+    report.pointsPerHypothesis = estimation.search.pointsPerHypothesis;
     report.meanEntropy = result.score.meanEntropy;
     report.rivalCostGap = result.rivalCostGap;
     report.inlierCount = static_cast<int>(std::count(out.mask.begin(), out.mask.end(), 1));

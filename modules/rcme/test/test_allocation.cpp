@@ -96,14 +96,13 @@ long loopAllocations(const SyntheticScene& s, Params params, bool calibrated, in
     const TwoViewData data =
         makeTwoViewData(s.points1, s.points2, calibrated ? s.cameraMatrix : Mat(), params);
     EstimatorComponents components = createEstimator(params, data);
-    CandidateSet candidates;
-    RansacResult result;
+    SearchResult result;
     allocationCount = 0;
     countingAllocations = true;
-    searchHypotheses(data, components, candidates, result);
+    searchHypotheses(data, components, result);
     countingAllocations = false;
     EXPECT_EQ(result.iterations, iterations);
-    EXPECT_TRUE(candidates.best(*components.scorer) != nullptr); // the loop did find models
+    EXPECT_TRUE(result.candidates.best(*components.scorer) != nullptr); // the loop did find models
     return allocationCount;
 }
 

@@ -9,8 +9,8 @@
 
 #ifdef RCME_STANDALONE_TESTS
 
+#include "framework/estimation_pipeline.hpp"
 #include "framework/estimator_factory.hpp"
-#include "framework/ransac_loop.hpp"
 #include "geometry/epipolar.hpp"
 #include "geometry/residual_bands.hpp"
 #include "test_internal_helpers.hpp"
@@ -110,7 +110,7 @@ enum class Reading
     kWithBailOutOnly, // ReadingScorer with bail-out
 };
 
-RansacResult estimateWith(const SyntheticScene& scene, const Params& params, Reading reading)
+Estimation estimateWith(const SyntheticScene& scene, const Params& params, Reading reading)
 {
     const TwoViewData data =
         makeTwoViewData(scene.points1, scene.points2, scene.cameraMatrix, params);
@@ -122,10 +122,10 @@ RansacResult estimateWith(const SyntheticScene& scene, const Params& params, Rea
 }
 
 // The rivals' inlier counts, in increasing order: the motions the ambiguity test remembered.
-std::vector<int> rivalCounts(const RansacResult& result)
+std::vector<int> rivalCounts(const Estimation& result)
 {
     std::vector<int> counts;
-    for (const RivalMotions::Rival& rival : result.rivals)
+    for (const RivalMotions::Rival& rival : result.search.rivals)
         counts.push_back(rival.score.inlierCount);
     std::sort(counts.begin(), counts.end());
     return counts;
@@ -148,23 +148,24 @@ std::pair<double, double> compareReading(const std::vector<Params>& methods, Rea
                         params.maxIterations = 300;
                         params.exactIterations = exact;
                         params.isParallel = parallel;
-                        const RansacResult bail =
-                            estimateWith(scene, params, Reading::kAsTheMethod);
-                        const RansacResult full = estimateWith(scene, params, reading);
+                        const Estimation bail = estimateWith(scene, params, Reading::kAsTheMethod);
+                        const Estimation full = estimateWith(scene, params, reading);
                         const std::string what = cv::format(
                             "seed %d w %.1f solver %d exact %d parallel %d", seed, inlierRatio,
                             static_cast<int>(params.solver), exact, parallel);
-                        EXPECT_EQ(bail.status, full.status) << what;
-                        EXPECT_EQ(bail.iterations, full.iterations) << what;
-                        EXPECT_EQ(bail.hypotheses, full.hypotheses) << what;
-                        EXPECT_EQ((bail.model.F - full.model.F).norm(), 0.0) << what;
-                        EXPECT_EQ(bail.mask, full.mask) << what;
-                        EXPECT_EQ(rivalCounts(bail), rivalCounts(full)) << what;
-                        EXPECT_TRUE(bail.rivalCostGap == full.rivalCostGap ||
-                                    (cvIsNaN(bail.rivalCostGap) && cvIsNaN(full.rivalCostGap)))
+                        EXPECT_EQ(bail.estimate.status, full.estimate.status) << what;
+                        EXPECT_EQ(bail.search.iterations, full.search.iterations) << what;
+                        EXPECT_EQ(bail.search.hypotheses, full.search.hypotheses) << what;
+                        EXPECT_EQ((bail.estimate.model.F - full.estimate.model.F).norm(), 0.0)
                             << what;
-                        pointsRead[0] += bail.pointsPerHypothesis;
-                        pointsRead[1] += full.pointsPerHypothesis;
+                        EXPECT_EQ(bail.estimate.mask, full.estimate.mask) << what;
+                        EXPECT_EQ(rivalCounts(bail), rivalCounts(full)) << what;
+                        EXPECT_TRUE(bail.estimate.rivalCostGap == full.estimate.rivalCostGap ||
+                                    (cvIsNaN(bail.estimate.rivalCostGap) &&
+                                     cvIsNaN(full.estimate.rivalCostGap)))
+                            << what;
+                        pointsRead[0] += bail.search.pointsPerHypothesis;
+                        pointsRead[1] += full.search.pointsPerHypothesis;
                         ++runs;
                     }
         }

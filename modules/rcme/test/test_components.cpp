@@ -224,9 +224,8 @@ TEST(Rcme_GoldStandardRefiner, improves_a_perturbed_estimate)
         model.E = skew(t) * R;
         model.F = fundamentalFromEssential(model.E, K.inverse());
         // A motion is refined as a motion (5 DoF); otherwise the refiner works on F (7 DoF).
-        model.hasMotion = calibrated;
-        model.R = R;
-        model.t = t;
+        if (calibrated)
+            model.motion = Motion{R, t};
         const std::vector<uchar> all(data.points1.size(), 1);
         auto cost = [&](const Eigen::Matrix3d& F) {
             double c = 0;
@@ -244,7 +243,7 @@ TEST(Rcme_GoldStandardRefiner, improves_a_perturbed_estimate)
         EXPECT_LT((model.F - trueF(scene)).norm(), 0.02);
         EXPECT_EQ(model.uncertaintyDof, calibrated ? 5 : 7);
         if (calibrated) {
-            EXPECT_TRUE(model.hasMotion);
+            EXPECT_TRUE(model.motion.has_value());
         }
     }
 }

@@ -9,8 +9,8 @@
 
 #ifdef RCME_STANDALONE_TESTS
 
+#include "framework/estimation_pipeline.hpp"
 #include "framework/estimator_factory.hpp"
-#include "framework/ransac_loop.hpp"
 
 #include <opencv2/core/eigen.hpp>
 
@@ -21,8 +21,8 @@ using namespace cv::rcme::detail;
 
 // What the loop selects (before the final tests) on `scene` with the default Params, with the
 // factory's inner samples or with `innerSamples` per round instead.
-RansacResult runLoop(const SyntheticScene& scene, int seed, int innerSamples = -1,
-                     bool exactIterations = false)
+Estimation runLoop(const SyntheticScene& scene, int seed, int innerSamples = -1,
+                   bool exactIterations = false)
 {
     Params params;
     params.randomGeneratorState = seed;
@@ -32,17 +32,18 @@ RansacResult runLoop(const SyntheticScene& scene, int seed, int innerSamples = -
     EstimatorComponents components = createEstimator(params, data);
     if (innerSamples >= 0)
         components.innerSampling.samplesPerRound = innerSamples;
-    return runRansac(data, components);
+    components.stages.resize(2); // selection and refinement, the factory's first stages
+    return estimateModel(data, components);
 }
 
 bool loopSelectsTheTrueMotion(const SyntheticScene& scene, int seed, int innerSamples = -1)
 {
-    const RansacResult result = runLoop(scene, seed, innerSamples);
-    if (!result.model.hasMotion || result.model.t.isZero())
+    const Estimate result = runLoop(scene, seed, innerSamples).estimate;
+    if (!result.model.motion || result.model.motion->t.isZero())
         return false;
     Mat R, t;
-    eigen2cv(result.model.R, R);
-    eigen2cv(Eigen::Vector3d(result.model.t), t);
+    eigen2cv(result.model.motion->R, R);
+    eigen2cv(Eigen::Vector3d(result.model.motion->t), t);
     const MotionError error = compareMotion(R, t, scene.R, scene.t);
     return error.rotationDeg <= 5 && error.translationDeg <= 15; // issue 15's "right"
 }
@@ -79,20 +80,21 @@ TEST(Rcme_InnerSampling, runs_only_where_the_budget_falls_short_of_the_bound)
     for (double inlierRatio : {0.8, 0.5, 0.3}) {
         const SyntheticScene scene = generateScene(testSceneParams(SCENE_CORRIDOR, 7, inlierRatio));
         for (bool exact : {false, true}) {
-            const RansacResult without = runLoop(scene, 3, 0, exact);
-            const RansacResult with = runLoop(scene, 3, -1, exact);
-            ASSERT_EQ(with.status, STATUS_SUCCESS) << with.message;
-            ASSERT_EQ(without.status, STATUS_SUCCESS) << without.message;
-            EXPECT_EQ(with.iterations, without.iterations);
+            const Estimation without = runLoop(scene, 3, 0, exact);
+            const Estimation with = runLoop(scene, 3, -1, exact);
+            ASSERT_EQ(with.estimate.status, STATUS_SUCCESS) << with.estimate.message;
+            ASSERT_EQ(without.estimate.status, STATUS_SUCCESS) << without.estimate.message;
+            EXPECT_EQ(with.search.iterations, without.search.iterations);
             if (inlierRatio > 0.6) {
-                EXPECT_EQ(with.hypotheses, without.hypotheses);
-                EXPECT_EQ((with.model.F - without.model.F).norm(), 0.0);
-                EXPECT_EQ(with.mask, without.mask);
+                EXPECT_EQ(with.search.hypotheses, without.search.hypotheses);
+                EXPECT_EQ((with.estimate.model.F - without.estimate.model.F).norm(), 0.0);
+                EXPECT_EQ(with.estimate.mask, without.estimate.mask);
             } else {
-                EXPECT_GT(with.hypotheses, without.hypotheses) << inlierRatio << " " << exact;
+                EXPECT_GT(with.search.hypotheses, without.search.hypotheses)
+                    << inlierRatio << " " << exact;
             }
             if (!exact && inlierRatio == 0.5)
-                EXPECT_LT(with.iterations, 1000); // the adaptive bound stopped the loop
+                EXPECT_LT(with.search.iterations, 1000); // the adaptive bound stopped the loop
         }
     }
 }

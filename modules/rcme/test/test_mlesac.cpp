@@ -10,8 +10,8 @@
 #ifdef RCME_STANDALONE_TESTS
 
 #include "framework/component_factories.hpp"
+#include "framework/estimation_pipeline.hpp"
 #include "framework/model_space.hpp"
-#include "framework/ransac_loop.hpp"
 #include "geometry/epipolar.hpp"
 #include "test_internal_helpers.hpp"
 
@@ -207,7 +207,9 @@ TEST(Rcme_Mlesac, runs_in_the_ransac_loop)
         c.termination = createAdaptiveTermination(params.confidence, params.maxIterations, 8);
         c.scorer = createMlesacScorer(data, 8, params.maxIterations);
         c.refiner = createGoldStandardRefiner(params.refineIterations);
-        const RansacResult result = runRansac(data, c);
+        c.stages.push_back(createCandidateSelection());
+        c.stages.push_back(createSelectedModelRefinement());
+        const Estimate result = estimateModel(data, c).estimate;
         if (ratio == 0.0) {
             EXPECT_EQ(result.status, STATUS_POOR_QUALITY_INPUT);
             continue;

@@ -164,10 +164,11 @@ using namespace cv::rcme::detail;
 Model trueMotion(const SyntheticScene& s, const TwoViewData& data)
 {
     Model model;
-    cv2eigen(s.R, model.R);
-    cv2eigen(s.t, model.t);
-    model.hasMotion = true;
-    model.E = skew(model.t) * model.R;
+    Motion motion;
+    cv2eigen(s.R, motion.R);
+    cv2eigen(s.t, motion.t);
+    model.motion = motion;
+    model.E = skew(motion.t) * motion.R;
     model.F = fundamentalFromEssential(model.E, data.Kinv);
     return model;
 }
@@ -264,7 +265,7 @@ TEST(Rcme_Boxes, propagated_covariance_matches_monte_carlo)
     ASSERT_EQ(atTruth.uncertaintyDof, 5);
     const Eigen::Matrix<double, 5, 5> predicted = atTruth.covariance.topLeftCorner<5, 5>();
 
-    const MotionTangent tangent(atTruth.R, atTruth.t);
+    const MotionTangent tangent(atTruth.motion->R, atTruth.motion->t);
     RNG rng(7);
     std::vector<Eigen::Matrix<double, 5, 1>> thetas;
     for (int trial = 0; trial < 400; ++trial) {
@@ -279,10 +280,10 @@ TEST(Rcme_Boxes, propagated_covariance_matches_monte_carlo)
         if (!fitModelOn(noisy, sample, 20, fitted))
             continue;
         // The estimate in the tangent space at the truth.
-        const Eigen::AngleAxisd delta(atTruth.R.transpose() * fitted.R);
+        const Eigen::AngleAxisd delta(atTruth.motion->R.transpose() * fitted.motion->R);
         Eigen::Matrix<double, 5, 1> theta;
         theta.head<3>() = delta.angle() * delta.axis();
-        theta.tail<2>() = tangent.B.transpose() * fitted.t;
+        theta.tail<2>() = tangent.B.transpose() * fitted.motion->t;
         thetas.push_back(theta);
     }
     ASSERT_GT(thetas.size(), 380u);
@@ -313,8 +314,9 @@ TEST(Rcme_Boxes, propagated_covariance_matches_monte_carlo)
 Model wrongMotion(const Model& truth, const TwoViewData& data)
 {
     Model bad = truth;
-    bad.R = bad.R * rotationExp(Eigen::Vector3d(0.2, -0.15, 0.1));
-    bad.E = skew(bad.t) * bad.R;
+    Motion& motion = *bad.motion;
+    motion.R = motion.R * rotationExp(Eigen::Vector3d(0.2, -0.15, 0.1));
+    bad.E = skew(motion.t) * motion.R;
     bad.F = fundamentalFromEssential(bad.E, data.Kinv);
     return bad;
 }
@@ -347,7 +349,7 @@ TEST(Rcme_Boxes, propagated_variances_of_a_block_equal_those_of_one_point)
         TwoViewData data = sceneData(s, calibrated, false);
         Model model = trueMotion(s, sceneData(s, true, false));
         if (!calibrated)
-            model.hasMotion = false;
+            model.motion.reset();
         std::vector<int> inliers;
         for (int i = 0; i < 40; ++i)
             inliers.push_back(i);

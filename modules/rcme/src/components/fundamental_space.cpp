@@ -6,8 +6,6 @@
 
 #include "framework/model_space.hpp"
 
-#include "framework/ransac_loop.hpp"
-
 namespace cv {
 namespace rcme {
 namespace detail {
@@ -28,22 +26,24 @@ public:
         return true;
     }
 
-    bool settleSelected(const TwoViewData&, EstimatorComponents&, RansacResult&) const override
+    std::optional<Verdict> settleSelected(const TwoViewData&, const Refinement&, Scorer&,
+                                          Fit&) const override
     {
-        return true;
+        return std::nullopt;
     }
 
     // Without K nothing of F is left determined: a family of F explains the points.
-    void resolveHomography(const TwoViewData&, EstimatorComponents&, const Eigen::Matrix3d&,
-                           RansacResult& result) const override
+    StageOutcome resolveHomography(const TwoViewData&, Scorer&, const Eigen::Matrix3d&,
+                                   const Estimate& estimate) const override
     {
-        rejectModel(result, STATUS_DEGENERATE_CONFIGURATION,
-                    "a homography explains the inliers as well as F (planar scene, pure rotation "
-                    "or too little parallax): F is not determined without the camera matrix",
-                    result.model);
+        return StageOutcome::rejecting(
+            STATUS_DEGENERATE_CONFIGURATION,
+            "a homography explains the inliers as well as F (planar scene, pure rotation or too "
+            "little parallax): F is not determined without the camera matrix",
+            estimate.model);
     }
 
-    void finish(const TwoViewData&, RansacResult&) const override {}
+    StageOutcome finish(const TwoViewData&, const Estimate&) const override { return {}; }
 };
 
 } // namespace

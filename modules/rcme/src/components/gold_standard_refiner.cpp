@@ -61,7 +61,7 @@ private:
     bool fitFinal(const TwoViewData& data, const std::vector<uchar>& selection, Model& model)
     {
         const std::vector<uchar>* chosen = &selection;
-        if (model.hasMotion) {
+        if (model.motion) {
             // An inlier whose point triangulates behind a camera is no correspondence of this
             // motion but an outlier that fell into its band by chance. Such points lie near the
             // epipoles or at extreme depths, where one of them outweighs dozens of true ones:
@@ -69,9 +69,9 @@ private:
             // Far points are kept (no distance bound): only a negative depth says "outlier".
             // When that would drop most inliers, their depths are not determined (rays nearly
             // parallel: a pure rotation) and cheirality says nothing about them.
-            const int inFront =
-                countPointsInFront(model.R, model.t, data.points1, data.points2, data.Kinv,
-                                   &selection, &inFront_, std::numeric_limits<double>::infinity());
+            const int inFront = countPointsInFront(model.motion->R, model.motion->t, data.points1,
+                                                   data.points2, data.Kinv, &selection, &inFront_,
+                                                   std::numeric_limits<double>::infinity());
             if (2 * inFront >= static_cast<int>(std::count(selection.begin(), selection.end(), 1)))
                 chosen = &inFront_;
         }
@@ -82,10 +82,9 @@ private:
         // Where the points do not determine the motion (a pure rotation leaves t free, when the
         // degeneracy test is off), the refit may turn t into the decomposition that puts the
         // points behind the cameras; then the motion stays and only its uncertainty is updated.
-        if (model.hasMotion &&
-            2 * countPointsInFront(fitted.R, fitted.t, data.points1, data.points2, data.Kinv,
-                                   &selection, nullptr) <
-                static_cast<int>(inliers_.size())) {
+        if (model.motion && 2 * countPointsInFront(fitted.motion->R, fitted.motion->t, data.points1,
+                                                   data.points2, data.Kinv, &selection, nullptr) <
+                                static_cast<int>(inliers_.size())) {
             fitted = model;
             if (!fitFinalModelOn(data, inliers_, 0, fitted, confirmed_))
                 return false;

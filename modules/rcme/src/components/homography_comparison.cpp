@@ -15,7 +15,6 @@
 #include "components/homography_comparison.hpp"
 #include "framework/component_factories.hpp"
 #include "framework/model_space.hpp"
-#include "framework/ransac_loop.hpp"
 #include "geometry/epipolar.hpp"
 #include "geometry/motion_parameterization.hpp"
 #include "geometry/statistics.hpp"
@@ -304,17 +303,18 @@ std::vector<Model> homographyMotions(const TwoViewData& data, const Eigen::Matri
     decomposeHomographyMat(Hmat, Kmat, rotations, translations, normals);
     std::vector<Model> motions;
     for (size_t s = 0; s < rotations.size(); ++s) {
-        Model m;
+        Motion motion;
         for (int r = 0; r < 3; ++r) {
             for (int c = 0; c < 3; ++c)
-                m.R(r, c) = rotations[s].at<double>(r, c);
-            m.t(r) = translations[s].at<double>(r);
+                motion.R(r, c) = rotations[s].at<double>(r, c);
+            motion.t(r) = translations[s].at<double>(r);
         }
-        if (!(m.t.norm() > 1e-9) || !m.R.allFinite())
+        if (!(motion.t.norm() > 1e-9) || !motion.R.allFinite())
             continue; // a rotation alone: no motion direction to start from
-        m.t.normalize();
-        m.hasMotion = true;
-        m.E = skew(m.t) * m.R;
+        motion.t.normalize();
+        Model m;
+        m.motion = motion;
+        m.E = skew(motion.t) * motion.R;
         m.F = fundamentalFromEssential(m.E, data.Kinv);
         motions.push_back(m);
     }
@@ -325,21 +325,23 @@ namespace {
 
 // The post-loop test of Params::degeneracyTest: the comparison above, and what the model space
 // leaves determined when the homography wins.
-class HomographyDegeneracyTest : public EstimateTest
+class HomographyDegeneracyTest final : public EstimationStage
 {
 public:
-    void apply(const TwoViewData& data, EstimatorComponents& c, RansacResult& result) override
+    StageOutcome run(const StageContext& context, const Estimate& estimate) override
     {
         const HomographyComparison homography =
-            compareWithHomography(data, result.model.F, result.mask);
-        if (homography.homographyExplainsInliers)
-            c.space->resolveHomography(data, c, homography.H, result);
+            compareWithHomography(context.data, estimate.model.F, estimate.mask);
+        if (!homography.homographyExplainsInliers)
+            return {};
+        return context.space.resolveHomography(context.data, context.scorer, homography.H,
+                                               estimate);
     }
 };
 
 } // namespace
 
-std::unique_ptr<EstimateTest> createHomographyDegeneracyTest()
+std::unique_ptr<EstimationStage> createHomographyDegeneracyTest()
 {
     return std::make_unique<HomographyDegeneracyTest>();
 }

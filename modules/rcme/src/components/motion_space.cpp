@@ -10,7 +10,7 @@
 #include "components/homography_comparison.hpp"
 #include "components/motion_support.hpp"
 #include "estimation/model_fit.hpp"
-#include "framework/ransac_loop.hpp"
+#include "framework/refinement.hpp"
 #include "geometry/epipolar.hpp"
 
 namespace cv {
@@ -35,21 +35,20 @@ constexpr double kAmbiguousCostGap = 10.0;
 // a hypothesis decided it on its minimal sample alone, and refinement cannot change it (E and -E
 // are the same geometry). When the decision changes the motion, its uncertainty is recomputed
 // at the new one from the same inliers.
-bool decideMotionOnInliers(const TwoViewData& data, EstimatorComponents& c, RansacResult& result)
+bool decideMotionOnInliers(const TwoViewData& data, Scorer& scorer, Fit& fit)
 {
-    Model& model = result.model;
-    const Eigen::Matrix3d R = model.R;
-    const Eigen::Vector3d t = model.t;
-    if (!recoverMotion(data, result.mask, model))
+    Model& model = fit.model;
+    const Motion before = *model.motion;
+    if (!recoverMotion(data, fit.inliers, model))
         return false;
-    if ((model.R - R).norm() < 1e-9 && (model.t - t).norm() < 1e-9)
+    if ((model.motion->R - before.R).norm() < 1e-9 && (model.motion->t - before.t).norm() < 1e-9)
         return true;
     if (model.uncertaintyDof > 0) {
         std::vector<int> inliers;
-        maskIndices(result.mask, inliers);
+        maskIndices(fit.inliers, inliers);
         fitModelOn(data, inliers, 0, model);
     }
-    result.score = c.scorer->score(data, model);
+    fit.score = scorer.score(data, model);
     return true;
 }
 
@@ -57,11 +56,11 @@ bool decideMotionOnInliers(const TwoViewData& data, EstimatorComponents& c, Rans
 (cv::decomposeHomographyMat), each refitted on the points it explains, the one of least cost
 (motionSupport); when a distinct motion comes within ORB-SLAM's 0.75 of its support, cheirality
 cannot tell the two and the status is degenerate. */
-void resolvePlanarMotion(const TwoViewData& data, EstimatorComponents& c, const Eigen::Matrix3d& H,
-                         RansacResult& result)
+StageOutcome resolvePlanarMotion(const TwoViewData& data, Scorer& scorer, const Eigen::Matrix3d& H,
+                                 const Estimate& estimate)
 {
     std::vector<Model> motions = homographyMotions(data, H);
-    motions.insert(motions.begin(), result.model);
+    motions.insert(motions.begin(), estimate.model);
     std::vector<MotionSupport> fits(motions.size());
     std::vector<uchar> within, inFront;
     size_t best = 0;
@@ -74,21 +73,24 @@ void resolvePlanarMotion(const TwoViewData& data, EstimatorComponents& c, const 
     for (size_t m = 0; m < motions.size(); ++m) {
         const bool distinct = areDistinctMotions(motions[m], motions[best]);
         if (distinct && fits[m].support >= kAmbiguousSupportRatio * fits[best].support &&
-            fits[m].cost - fits[best].cost < kAmbiguousCostGap * sigmaSquared) {
-            rejectModel(result, STATUS_DEGENERATE_CONFIGURATION,
-                        "a homography explains the inliers (planar scene) and two of its motions "
-                        "put them in front of both cameras: the motion is not determined",
-                        motions[best]);
-            return;
-        }
+            fits[m].cost - fits[best].cost < kAmbiguousCostGap * sigmaSquared)
+            return StageOutcome::rejecting(
+                STATUS_DEGENERATE_CONFIGURATION,
+                "a homography explains the inliers (planar scene) and two of its motions put them "
+                "in front of both cameras: the motion is not determined",
+                motions[best]);
     }
-    result.planar = true;
-    result.model = motions[best];
-    c.scorer->classify(data, result.model, result.mask);
-    result.score = c.scorer->score(data, result.model);
-    if (!result.score.isCandidate || fits[best].support <= 0)
-        rejectModel(result, STATUS_POOR_QUALITY_INPUT,
-                    "the motion of the planar scene fails the acceptance tests", result.model);
+    Fit planar{motions[best], Score(), {}};
+    scorer.classify(data, planar.model, planar.inliers);
+    planar.score = scorer.score(data, planar.model);
+    const bool acceptable = planar.score.isCandidate && fits[best].support > 0;
+    StageOutcome outcome = StageOutcome::revised(std::move(planar));
+    outcome.planar = true;
+    if (!acceptable)
+        outcome.verdict =
+            Verdict{STATUS_POOR_QUALITY_INPUT,
+                    "the motion of the planar scene fails the acceptance tests", motions[best]};
+    return outcome;
 }
 
 class MotionSpace : public ModelSpace
@@ -98,81 +100,72 @@ public:
                         std::vector<Eigen::Vector2d>& points1,
                         std::vector<Eigen::Vector2d>& points2) const override
     {
-        return model.hasMotion || recoverMotionFromSample(data, sample, model, points1, points2);
+        return model.motion || recoverMotionFromSample(data, sample, model, points1, points2);
     }
 
     bool liftOn(const TwoViewData& data, const std::vector<uchar>& inliers, Model& model,
                 bool redecide) const override
     {
-        return (model.hasMotion && !redecide) || recoverMotion(data, inliers, model);
+        return (model.motion && !redecide) || recoverMotion(data, inliers, model);
     }
 
-    bool settleSelected(const TwoViewData& data, EstimatorComponents& c,
-                        RansacResult& result) const override
+    std::optional<Verdict> settleSelected(const TwoViewData& data, const Refinement& refinement,
+                                          Scorer& scorer, Fit& selected) const override
     {
-        if (!result.model.hasMotion) {
+        if (!selected.model.motion) {
             // The (refined) F becomes a motion: the closest essential matrix, decomposed with
             // cheirality, then refined in motion space. Refining F first matters: the F of a
             // noisy minimal sample is far from any essential matrix.
-            if (!recoverMotion(data, result.mask, result.model)) {
-                rejectModel(result, STATUS_DEGENERATE_CONFIGURATION, kNoCheirality, result.model);
-                return false;
-            }
-            // The motion's maximum-likelihood fit on the F's inliers comes before classifying
-            // again: the bare projection can lose most of them.
-            if (c.refiner)
-                c.refiner->refine(data, result.mask, result.model);
-            result.score = c.scorer->score(data, result.model);
-            c.scorer->classify(data, result.model, result.mask);
-            refineSelected(data, c, result);
+            if (!recoverMotion(data, selected.inliers, selected.model))
+                return Verdict{STATUS_DEGENERATE_CONFIGURATION, kNoCheirality, selected.model};
+            refinement.refineNewForm(data, selected);
         }
-        if (!decideMotionOnInliers(data, c, result)) {
-            rejectModel(result, STATUS_DEGENERATE_CONFIGURATION, kNoCheirality, result.model);
-            return false;
-        }
-        return true;
+        if (!decideMotionOnInliers(data, scorer, selected))
+            return Verdict{STATUS_DEGENERATE_CONFIGURATION, kNoCheirality, selected.model};
+        return std::nullopt;
     }
 
     // A rotation that explains the inliers as well as the motion gives STATUS_PURE_ROTATION
-    // (model.R, t zero, the rotation's 3x3 covariance as uncertaintyDof 3); otherwise the scene is
-    // planar (or nearly) and its motion is resolvePlanarMotion's.
-    void resolveHomography(const TwoViewData& data, EstimatorComponents& c,
-                           const Eigen::Matrix3d& H, RansacResult& result) const override
+    // (the rotation and its covariance, the motion turned down); otherwise the scene is planar (or
+    // nearly) and its motion is resolvePlanarMotion's.
+    StageOutcome resolveHomography(const TwoViewData& data, Scorer& scorer,
+                                   const Eigen::Matrix3d& H,
+                                   const Estimate& estimate) const override
     {
-        const RotationComparison rotation = compareWithRotation(data, result.model.F, result.mask);
-        if (!rotation.rotationExplainsInliers) {
-            resolvePlanarMotion(data, c, H, result);
-            return;
-        }
-        result.rejected = result.model;
-        result.hasRejected = true;
-        Model pure;
-        pure.hasMotion = true;
+        RotationComparison rotation = compareWithRotation(data, estimate.model.F, estimate.mask);
+        if (!rotation.rotationExplainsInliers)
+            return resolvePlanarMotion(data, scorer, H, estimate);
+        StageOutcome outcome;
+        Rotation& pure = outcome.rotation.emplace();
         pure.R = rotation.R;
-        pure.t.setZero();
-        if (rotation.hasCovariance) {
-            pure.uncertaintyDof = 3;
-            pure.covariance.topLeftCorner<3, 3>() = rotation.covariance;
-        }
-        result.model = pure;
-        result.mask = rotation.inliers;
-        result.status = STATUS_PURE_ROTATION;
-        result.message = "a rotation about the camera centre explains the inliers as well as a "
-                         "motion: R is determined, the translation is not";
+        if (rotation.hasCovariance)
+            pure.covariance = rotation.covariance;
+        outcome.inliers = std::move(rotation.inliers);
+        outcome.verdict = Verdict{STATUS_PURE_ROTATION,
+                                  "a rotation about the camera centre explains the inliers as well "
+                                  "as a motion: R is determined, the translation is not",
+                                  estimate.model};
+        return outcome;
     }
 
     // The final fit moved the motion: the inliers it leaves in front of both cameras are
     // recoverPose's mask, and a motion that leaves none is no motion of these points.
-    void finish(const TwoViewData& data, RansacResult& result) const override
+    StageOutcome finish(const TwoViewData& data, const Estimate& estimate) const override
     {
-        if (result.status == STATUS_SUCCESS &&
-            countPointsInFront(result.model.R, result.model.t, data.points1, data.points2,
-                               data.Kinv, &result.mask, &result.inFront) == 0)
-            rejectModel(result, STATUS_DEGENERATE_CONFIGURATION, kNoCheirality, result.model);
-        if (result.status == STATUS_PURE_ROTATION)
-            result.inFront = result.mask;
-        else if (result.status != STATUS_SUCCESS)
-            result.inFront.assign(result.mask.size(), 0);
+        StageOutcome outcome;
+        std::vector<uchar>& inFront = outcome.inFront.emplace();
+        if (estimate.status == STATUS_SUCCESS &&
+            countPointsInFront(estimate.model.motion->R, estimate.model.motion->t, data.points1,
+                               data.points2, data.Kinv, &estimate.mask, &inFront) == 0) {
+            outcome.verdict =
+                Verdict{STATUS_DEGENERATE_CONFIGURATION, kNoCheirality, estimate.model};
+            inFront.assign(estimate.mask.size(), 0);
+        } else if (estimate.status == STATUS_PURE_ROTATION) {
+            inFront = estimate.mask;
+        } else if (estimate.status != STATUS_SUCCESS) {
+            inFront.assign(estimate.mask.size(), 0);
+        }
+        return outcome;
     }
 };
 

@@ -6,7 +6,7 @@
 
 // How well a motion explains the points when cheirality counts: shared by the comparisons of
 // distinct motions after the loop (a planar scene's, components/motion_space.cpp; the ambiguity
-// test's, components/ambiguity_test.cpp).
+// test's, components/rival_motion_decision.cpp).
 
 #include "framework/model.hpp"
 

@@ -9,8 +9,8 @@
 // others among the n - 1 above it, n the smallest with T'_n >= t; past T'_N it is uniform.
 // Sample j still depends only on (seed, j), like the uniform sampler's.
 
-#include "components/random.hpp"
 #include "framework/component_factories.hpp"
+#include "framework/random.hpp"
 
 namespace cv {
 namespace rcme {

@@ -14,9 +14,9 @@
 // test, so a hypothesis that passes is scored on the same terms: the propagated uncertainty
 // (Cov-RANSAC, RCME) or the threshold's Sampson band (Standard, MLESAC).
 
-#include "components/random.hpp"
 #include "components/residual_uncertainty.hpp"
 #include "framework/component_factories.hpp"
+#include "framework/random.hpp"
 #include "geometry/residual_bands.hpp"
 #include "geometry/statistics.hpp"
 

@@ -3,8 +3,8 @@
 
 // Box "random sampling" of Fig. 1: every m-subset of the n points equally likely.
 
-#include "components/random.hpp"
 #include "framework/component_factories.hpp"
+#include "framework/random.hpp"
 
 namespace cv {
 namespace rcme {

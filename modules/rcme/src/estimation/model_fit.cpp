@@ -361,15 +361,16 @@ void fitProblem(const TwoViewData& data, const std::vector<int>& indices, int ma
 bool fitModel(const TwoViewData& data, const std::vector<int>& indices, int maxIterations,
               Uncertainty uncertainty, Model& model, std::vector<int>* confirmed = nullptr)
 {
-    if (model.hasMotion) {
+    if (model.motion) {
         CV_Assert(data.calibrated);
         if (indices.size() < static_cast<size_t>(MotionProblem::kDof))
             return false;
-        MotionProblem problem{data.Kinv, model.R, model.t, model.R, model.t};
+        Motion& motion = *model.motion;
+        MotionProblem problem{data.Kinv, motion.R, motion.t, motion.R, motion.t};
         fitProblem(data, indices, maxIterations, uncertainty, problem, model, confirmed);
-        model.R = problem.R;
-        model.t = problem.t;
-        model.E = skew(model.t) * model.R;
+        motion.R = problem.R;
+        motion.t = problem.t;
+        model.E = skew(motion.t) * motion.R;
         model.F = fundamentalFromEssential(model.E, data.Kinv);
         return model.F.allFinite();
     }

@@ -75,14 +75,22 @@ std::unique_ptr<Scorer> createEntropyScorer(const TwoViewData& data, const Entro
 std::unique_ptr<Termination> createEntropyTermination(std::unique_ptr<Termination> bound,
                                                       double entropyBound);
 
-// The tests after the loop (EstimateTest).
+// The stages after the loop (EstimationStage), in the order the factory runs them.
+//! Box 3(b): the best candidate and its inliers, or the failure of a run without one.
+std::unique_ptr<EstimationStage> createCandidateSelection();
+//! Box 4: the selected model refined until its inliers settle, made the model space's estimate.
+std::unique_ptr<EstimationStage> createSelectedModelRefinement();
 //! Params::degeneracyTest: a homography against the final inliers (homography_comparison.cpp).
-std::unique_ptr<EstimateTest> createHomographyDegeneracyTest();
+std::unique_ptr<EstimationStage> createHomographyDegeneracyTest();
+//! The final fit and covariance (Params::refine).
+std::unique_ptr<EstimationStage> createFinalFit();
 //! Params::ambiguityMargin (> 0), calibrated data; needs EstimatorComponents::tracksRivals.
-std::unique_ptr<EstimateTest> createAmbiguityTest(double margin);
+std::unique_ptr<EstimationStage> createRivalMotionDecision(double margin);
 //! Params::maxRotationStdDeg, maxTranslationStdDeg (each <= 0: off), calibrated data.
-std::unique_ptr<EstimateTest> createUncertaintyTest(double maxRotationStdDeg,
-                                                    double maxTranslationStdDeg);
+std::unique_ptr<EstimationStage> createUncertaintyBound(double maxRotationStdDeg,
+                                                        double maxTranslationStdDeg);
+//! The model space's last decision (ModelSpace::finish), after a failure too.
+std::unique_ptr<EstimationStage> createFinalDecision();
 
 } // namespace detail
 } // namespace rcme

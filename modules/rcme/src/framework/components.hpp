@@ -9,7 +9,7 @@
 // implementation per interface, assembled by estimator_factory.cpp and run by ransac_loop.cpp;
 // each implementation lives in its own file under components/.
 
-#include "framework/model.hpp"
+#include "framework/estimate.hpp"
 
 #include <memory>
 #include <optional>
@@ -152,19 +152,32 @@ public:
     virtual void finalize(const TwoViewData& data, std::vector<uchar>& inliers, Model& model) = 0;
 };
 
-struct EstimatorComponents;
-struct RansacResult;
+struct SearchResult;
 class ModelSpace;
+class Refinement;
 
-/** A test of a successful estimate after the loop (the kind of OpenCV USAC's Degeneracy): what
-the data determine of it. It may keep the estimate, replace it with a better-supported one, or
-turn the result into a failure whose status says what is not determined (rejectModel). */
-class EstimateTest
+//! What a stage after the loop may read: the data, what the loop found, and the method's scorer,
+//! refinement and model space.
+struct StageContext
+{
+    const TwoViewData& data;
+    const SearchResult& search;
+    Scorer& scorer;
+    const Refinement& refinement;
+    const ModelSpace& space;
+};
+
+/** A stage after the loop, in the order of the paper's Fig. 1: selection, refinement, the
+decisions on what the data determine (OpenCV USAC's Degeneracy kind), the final fit. It reads
+the estimate as it stands and returns what it found (a model, a verdict with its reason, a
+measure); the pipeline (framework/estimation_pipeline.cpp) applies it. */
+class EstimationStage
 {
 public:
-    virtual ~EstimateTest() = default;
-    virtual void apply(const TwoViewData& data, EstimatorComponents& components,
-                       RansacResult& result) = 0;
+    virtual ~EstimationStage() = default;
+    //! Whether it runs on an estimate an earlier stage turned down (by default it does not).
+    virtual bool runsOnFailure() const { return false; }
+    virtual StageOutcome run(const StageContext& context, const Estimate& estimate) = 0;
 };
 
 //! A method: one component of each kind.
@@ -200,14 +213,10 @@ struct EstimatorComponents
     //! What an estimate is: F, or with K the motion (framework/model_space.hpp). Shared, as the
     //! components that lift hypotheses hold it too.
     std::shared_ptr<const ModelSpace> space;
-    //! The test of what the final inliers determine, before the final fit (a homography
-    //! explaining them: Params::degeneracyTest); null when off.
-    std::unique_ptr<EstimateTest> degeneracy;
-    //! The tests of the final estimate, after its final fit, in order (the ambiguity test, the
-    //! uncertainty test); empty when none applies.
-    std::vector<std::unique_ptr<EstimateTest>> finalTests;
-    //! The loop remembers the distinct motions among its candidates (RivalMotions), for the
-    //! ambiguity test.
+    //! The stages after the loop, in order (framework/estimation_pipeline.cpp).
+    std::vector<std::unique_ptr<EstimationStage>> stages;
+    //! The loop remembers the distinct motions among its candidates (RivalMotions), for a stage
+    //! that weighs them (the rival motion decision).
     bool tracksRivals = false;
 };
 

@@ -153,16 +153,22 @@ EstimatorComponents createEstimator(const Params& params, const TwoViewData& dat
         c.innerSampling.seed = static_cast<uint64_t>(params.randomGeneratorState);
     }
     c.parallel = params.isParallel;
+    // The stages after the loop, in the order of Fig. 1: select, refine, decide, finalize.
+    c.stages.push_back(createCandidateSelection());
+    c.stages.push_back(createSelectedModelRefinement());
     if (params.degeneracyTest)
-        c.degeneracy = createHomographyDegeneracyTest();
-    // The final tests weigh motions: F alone has no rotation or translation to bound.
+        c.stages.push_back(createHomographyDegeneracyTest());
+    c.stages.push_back(createFinalFit());
+    // The decisions after the final fit weigh motions: F alone has no rotation or translation to
+    // bound.
     if (data.calibrated && params.ambiguityMargin > 0) {
-        c.finalTests.push_back(createAmbiguityTest(params.ambiguityMargin));
+        c.stages.push_back(createRivalMotionDecision(params.ambiguityMargin));
         c.tracksRivals = true;
     }
     if (data.calibrated && (params.maxRotationStdDeg > 0 || params.maxTranslationStdDeg > 0))
-        c.finalTests.push_back(
-            createUncertaintyTest(params.maxRotationStdDeg, params.maxTranslationStdDeg));
+        c.stages.push_back(
+            createUncertaintyBound(params.maxRotationStdDeg, params.maxTranslationStdDeg));
+    c.stages.push_back(createFinalDecision());
     return c;
 }
 

@@ -9,9 +9,18 @@
 
 #include "framework/two_view_data.hpp"
 
+#include <optional>
+
 namespace cv {
 namespace rcme {
 namespace detail {
+
+//! A camera motion: x2 = R x1 + t, |t| = 1.
+struct Motion
+{
+    Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
+    Eigen::Vector3d t = Eigen::Vector3d::Zero();
+};
 
 //! One hypothesis (and, after selection, the estimate).
 struct Model
@@ -20,10 +29,9 @@ struct Model
     //! Set when the hypothesis is an essential matrix (calibrated data): F = K^-T E K^-1 up to
     //! scale. Otherwise zero, and the motion comes from F once a model is selected.
     Eigen::Matrix3d E = Eigen::Matrix3d::Zero();
-    //! Motion, valid when hasMotion: x2 = R x1 + t, |t| = 1.
-    bool hasMotion = false;
-    Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
-    Eigen::Vector3d t = Eigen::Vector3d::Zero();
+    //! With K, once the decomposition of E is decided: the model is this motion (E, F follow from
+    //! it), refined as a motion; without it the model is F, refined as F.
+    std::optional<Motion> motion;
     /** First-order uncertainty of the model: the covariance of its uncertaintyDof parameters
     theta (0: unknown; 5: the motion's tangent space, see MotionTangent; 7: F's, see
     FundamentalTangent) and the directions dF/dtheta_k in pixels, so that a residual's variance

@@ -10,7 +10,7 @@ namespace detail {
 
 namespace {
 
-// E, F and hasMotion from the decomposition of the model's E (or of K^T F K) that puts the most
+// The motion, E and F from the decomposition of the model's E (or of K^T F K) that puts the most
 // of the given points (all when `selection` is null) in front of both cameras.
 bool setMotionByCheirality(const TwoViewData& data, const std::vector<Eigen::Vector2d>& points1,
                            const std::vector<Eigen::Vector2d>& points2,
@@ -19,12 +19,17 @@ bool setMotionByCheirality(const TwoViewData& data, const std::vector<Eigen::Vec
     CV_Assert(data.calibrated);
     const Eigen::Matrix3d E =
         model.E.isZero() ? essentialFromFundamental(model.F, data.K) : model.E;
-    if (recoverMotionFromEssential(E, points1, points2, data.Kinv, selection, model.R, model.t) <=
-        0)
+    // A motion the decomposition fails on keeps what it tried last (the rejected model's).
+    Motion decomposed = model.motion.value_or(Motion());
+    const int inFront = recoverMotionFromEssential(E, points1, points2, data.Kinv, selection,
+                                                   decomposed.R, decomposed.t);
+    if (inFront <= 0 && !model.motion)
         return false;
-    model.E = skew(model.t) * model.R;
+    model.motion = decomposed;
+    if (inFront <= 0)
+        return false;
+    model.E = skew(decomposed.t) * decomposed.R;
     model.F = fundamentalFromEssential(model.E, data.Kinv);
-    model.hasMotion = true;
     return true;
 }
 
@@ -62,8 +67,8 @@ bool recoverMotionFromSample(const TwoViewData& data, const std::vector<int>& sa
 bool areDistinctMotions(const Model& a, const Model& b)
 {
     constexpr double kDistinctRotationDeg = 5.0, kDistinctTranslationDeg = 15.0;
-    return rotationAngleDeg(a.R, b.R) > kDistinctRotationDeg ||
-           directionAngleDeg(a.t, b.t) > kDistinctTranslationDeg;
+    return rotationAngleDeg(a.motion->R, b.motion->R) > kDistinctRotationDeg ||
+           directionAngleDeg(a.motion->t, b.motion->t) > kDistinctTranslationDeg;
 }
 
 } // namespace detail

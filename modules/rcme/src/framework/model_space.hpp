@@ -5,7 +5,7 @@
 #define OPENCV_RCME_FRAMEWORK_MODEL_SPACE_HPP
 
 // What an estimate is, chosen once per problem by the factory: a fundamental matrix (no camera
-// matrix: 7 DoF) or a camera motion (with K: 5 DoF). The loop and the post-loop components ask the
+// matrix: 7 DoF) or a camera motion (with K: 5 DoF). The loop and the stages after it ask the
 // space; none of them branches on the camera matrix (the public functions write out what the
 // model holds: F, and its motion when the space made one).
 
@@ -16,8 +16,6 @@
 namespace cv {
 namespace rcme {
 namespace detail {
-
-struct RansacResult;
 
 class ModelSpace
 {
@@ -36,21 +34,23 @@ public:
     virtual bool liftOn(const TwoViewData& data, const std::vector<uchar>& inliers, Model& model,
                         bool redecide) const = 0;
 
-    /** The selected model, refined as F (result.model, mask, score), becomes the estimate of the
-    space, decided on all its inliers: for a motion, the essential matrix closest to F decomposed
-    by cheirality and refined in motion space. False when it cannot decide the model: the result
-    is then rejected (the status says why). */
-    virtual bool settleSelected(const TwoViewData& data, EstimatorComponents& components,
-                                RansacResult& result) const = 0;
+    /** The selected model, refined as F (`selected`: model, score, inliers), becomes the
+    estimate of the space, decided on all its inliers: for a motion, the essential matrix closest
+    to F decomposed by cheirality and refined in motion space (refinement). The verdict when it
+    cannot decide the model (the status says why); `selected` is then the model it turns down. */
+    virtual std::optional<Verdict> settleSelected(const TwoViewData& data,
+                                                  const Refinement& refinement, Scorer& scorer,
+                                                  Fit& selected) const = 0;
 
-    /** A homography H explains the inliers of a successful result as well as its F: what the
+    /** A homography H explains the inliers of a standing estimate as well as its F: what the
     inliers still determine (Params::degeneracyTest; the status says what they do not). */
-    virtual void resolveHomography(const TwoViewData& data, EstimatorComponents& components,
-                                   const Eigen::Matrix3d& H, RansacResult& result) const = 0;
+    virtual StageOutcome resolveHomography(const TwoViewData& data, Scorer& scorer,
+                                           const Eigen::Matrix3d& H,
+                                           const Estimate& estimate) const = 0;
 
-    /** The last decision, after the final fit and the final tests: the recoverPose mask
-    (result.inFront) and the status it leaves. */
-    virtual void finish(const TwoViewData& data, RansacResult& result) const = 0;
+    /** The last decision, after the final fit and the decisions: the recoverPose mask
+    (StageOutcome::inFront) and the status it leaves. */
+    virtual StageOutcome finish(const TwoViewData& data, const Estimate& estimate) const = 0;
 };
 
 std::unique_ptr<ModelSpace> createFundamentalSpace();

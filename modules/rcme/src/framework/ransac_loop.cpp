@@ -3,40 +3,12 @@
 
 #include "framework/ransac_loop.hpp"
 
-#include "components/random.hpp"
-#include "estimation/model_fit.hpp"
-#include "framework/candidate_set.hpp"
-#include "framework/model_space.hpp"
-#include "geometry/epipolar.hpp"
-#include "geometry/motion_parameterization.hpp"
+#include "framework/random.hpp"
 #include "geometry/statistics.hpp"
 
 namespace cv {
 namespace rcme {
 namespace detail {
-
-// A refined model usually gathers inliers its minimal sample missed; a refinement the scorer does
-// not keep ends the rounds, so a diverging refinement cannot spoil a good estimate.
-void refineSelected(const TwoViewData& data, EstimatorComponents& c, RansacResult& result)
-{
-    constexpr int kMaxRounds = 10;
-    if (!c.refiner)
-        return;
-    for (int round = 0; round < kMaxRounds; ++round) {
-        Model refined = result.model;
-        if (!c.refiner->refine(data, result.mask, refined))
-            return;
-        const Score refinedScore = c.scorer->score(data, refined);
-        if (!c.scorer->keepsRefinement(result.score, refinedScore))
-            return;
-        result.model = refined;
-        result.score = refinedScore;
-        const std::vector<uchar> previousMask = result.mask;
-        c.scorer->classify(data, result.model, result.mask);
-        if (result.mask == previousMask)
-            return;
-    }
-}
 
 namespace {
 
@@ -55,27 +27,7 @@ void optimizeLocally(const TwoViewData& data, EstimatorComponents& c, const Mode
         candidates.add(refit, score);
 }
 
-/* The most supported hypothesis of a run without candidates, as the method would have returned
-it without its acceptance tests: refitted on its inliers and, with K, given its motion. Only a
-diagnostic (Report::rejectedF...): a minimal sample's raw hypothesis would be judged far worse
-than what the data support. */
-Model polishRejected(const TwoViewData& data, EstimatorComponents& c, Model model)
-{
-    constexpr int kFitIterations = 20;
-    std::vector<uchar> mask;
-    c.scorer->classify(data, model, mask);
-    if (!c.space->liftOn(data, mask, model, /*redecide=*/false))
-        return model;
-    std::vector<int> inliers;
-    maskIndices(mask, inliers);
-    Model fitted = model;
-    if (fitModelOn(data, inliers, kFitIterations, fitted))
-        model = fitted;
-    c.space->liftOn(data, mask, model, /*redecide=*/true);
-    return model;
-}
-
-// Distinct motions the ambiguity test remembers: corridors and bas-relief scenes show two or
+// Distinct motions the loop remembers (RivalMotions): corridors and bas-relief scenes show two or
 // three basins; the rest are minimal samples of one basin scattered by noise.
 constexpr int kRivalCapacity = 8;
 
@@ -168,8 +120,9 @@ public:
         innerDraw_.resize(static_cast<size_t>(c.solver->sampleSize()));
     }
 
-    void run(CandidateSet& candidates, RansacResult& result)
+    void run(SearchResult& result)
     {
+        CandidateSet& candidates = result.candidates;
         int iteration = 0;
         while (iteration < c_.termination->iterationBound()) {
             // Checked per batch (one iteration when sequential): a clock read is cheap next to
@@ -217,9 +170,9 @@ private:
 
     /* The least inlier count at which a hypothesis changes the run: a new most-supported
     hypothesis (Scorer::evaluateUpTo: a scorer ranking by count has no better candidate below it),
-    or a rival the ambiguity test would keep. Taken before a batch is evaluated; it only grows as
+    or a rival RivalMotions would keep. Taken before a batch is evaluated; it only grows as
     the batch is committed, so a hypothesis below it then stays below it. */
-    int inliersThatMatter(const RansacResult& result) const
+    int inliersThatMatter(const SearchResult& result) const
     {
         int least = result.mostSupportedInliers + 1;
         if (rivals_)
@@ -250,7 +203,7 @@ private:
         });
     }
 
-    void commit(IterationSlot& slot, CandidateSet& candidates, RansacResult& result)
+    void commit(IterationSlot& slot, CandidateSet& candidates, SearchResult& result)
     {
         if (slot.solutions == 0) {
             ++result.degenerateSamples;
@@ -300,7 +253,7 @@ private:
     not (w^m); minimal ones, because a fit to many of its inliers stays in its basin. Any other
     loop is left as it is. The draws depend only on (seed, draw count); SPRT does not see them,
     so its state is that of the loop. */
-    void sampleInsideBest(CandidateSet& candidates, RansacResult& result)
+    void sampleInsideBest(CandidateSet& candidates, SearchResult& result)
     {
         constexpr int kMaxRounds = 4;
         const EstimatorComponents::InnerSampling& inner = c_.innerSampling;
@@ -392,103 +345,17 @@ private:
     std::vector<int> innerPool_;                      //!< the best candidate's inliers
     std::vector<int> innerDraw_;                      //!< an inner sample, as pool positions
     int innerDrawn_ = 0;                              //!< inner samples drawn so far
-    std::unique_ptr<RivalMotions> rivals_;            //!< with the ambiguity test only
+    std::unique_ptr<RivalMotions> rivals_;            //!< with components.tracksRivals only
     long long pointsEvaluated_ = 0; //!< residuals evaluated by verification and scoring
     int inliersThatMatter_ = 0;     //!< inliersThatMatter() before the batch being evaluated
 };
 
 } // namespace
 
-void rejectModel(RansacResult& result, Status status, const std::string& message,
-                 const Model& model)
-{
-    result.status = status;
-    result.message = message;
-    result.rejected = model;
-    result.hasRejected = true;
-    std::fill(result.mask.begin(), result.mask.end(), 0);
-}
-
 void searchHypotheses(const TwoViewData& data, EstimatorComponents& components,
-                      CandidateSet& candidates, RansacResult& result)
+                      SearchResult& result)
 {
-    HypothesisSearch(data, components).run(candidates, result);
-}
-
-RansacResult runRansac(const TwoViewData& data, EstimatorComponents& c)
-{
-    RansacResult result;
-    const int n = data.size();
-    result.mask.assign(static_cast<size_t>(n), 0);
-    const int m = c.solver->sampleSize();
-    if (n < m) {
-        result.status = STATUS_NOT_ENOUGH_POINTS;
-        result.message = cv::format("%d correspondences, the minimal solver needs %d", n, m);
-        return result;
-    }
-
-    CandidateSet candidates;
-    searchHypotheses(data, c, candidates, result);
-    const int iteration = result.iterations;
-
-    const CandidateSet::Candidate* best = candidates.best(*c.scorer);
-    if (!best) {
-        if (result.degenerateSamples == iteration) {
-            result.status = STATUS_DEGENERATE_CONFIGURATION;
-            result.message = "every minimal sample was degenerate (identical or collinear points)";
-        } else {
-            result.status = STATUS_POOR_QUALITY_INPUT;
-            result.message =
-                cv::format("no hypothesis passed the acceptance tests in %d iterations%s",
-                           iteration, result.outOfTime ? " (Params.timeBudget ran out)" : "");
-        }
-        if (result.mostSupportedInliers >= 0) {
-            result.rejected = polishRejected(data, c, result.mostSupported);
-            result.hasRejected = true;
-        }
-        return result;
-    }
-    result.model = best->model;
-    result.score = best->score;
-
-    c.scorer->classify(data, result.model, result.mask);
-    refineSelected(data, c, result);
-    if (!c.space->settleSelected(data, c, result))
-        return result;
-    if (!result.score.isCandidate) {
-        rejectModel(result, STATUS_POOR_QUALITY_INPUT,
-                    "the motion closest to the selected hypothesis fails the acceptance tests",
-                    result.model);
-        return result;
-    }
-    result.status = STATUS_SUCCESS;
-    return result;
-}
-
-RansacResult estimateModel(const TwoViewData& data, EstimatorComponents& c)
-{
-    RansacResult result = runRansac(data, c);
-    if (c.degeneracy && result.status == STATUS_SUCCESS)
-        c.degeneracy->apply(data, c, result);
-    finalizeModel(data, c, result);
-    for (const std::unique_ptr<EstimateTest>& test : c.finalTests)
-        if (result.status == STATUS_SUCCESS)
-            test->apply(data, c, result);
-    c.space->finish(data, result);
-    return result;
-}
-
-void finalizeModel(const TwoViewData& data, EstimatorComponents& c, RansacResult& result)
-{
-    if (result.status != STATUS_SUCCESS || !c.refiner)
-        return;
-    c.refiner->finalize(data, result.mask, result.model);
-    // The final fit moves the model a little: the inliers are the points it used that the
-    // final model still holds.
-    std::vector<uchar> held;
-    c.scorer->classify(data, result.model, held);
-    for (size_t i = 0; i < held.size(); ++i)
-        result.mask[i] = result.mask[i] && held[i];
+    HypothesisSearch(data, components).run(result);
 }
 
 } // namespace detail

@@ -1,8 +1,8 @@
 // This file is part of the rcme module. It is subject to the license terms in the LICENSE file
 // found in the top-level directory of this distribution.
 
-#ifndef OPENCV_RCME_COMPONENTS_RANDOM_HPP
-#define OPENCV_RCME_COMPONENTS_RANDOM_HPP
+#ifndef OPENCV_RCME_FRAMEWORK_RANDOM_HPP
+#define OPENCV_RCME_FRAMEWORK_RANDOM_HPP
 
 #include <algorithm>
 #include <cstddef>
@@ -58,4 +58,4 @@ void drawDistinct(uint64_t& state, uint32_t bound, std::size_t first, Vector& sa
 } // namespace rcme
 } // namespace cv
 
-#endif // OPENCV_RCME_COMPONENTS_RANDOM_HPP
+#endif // OPENCV_RCME_FRAMEWORK_RANDOM_HPP

@@ -1,8 +1,8 @@
 // This file is part of the rcme module. It is subject to the license terms in the LICENSE file
 // found in the top-level directory of this distribution.
 
-#ifndef OPENCV_RCME_COMPONENTS_RIVAL_MOTIONS_HPP
-#define OPENCV_RCME_COMPONENTS_RIVAL_MOTIONS_HPP
+#ifndef OPENCV_RCME_FRAMEWORK_RIVAL_MOTIONS_HPP
+#define OPENCV_RCME_FRAMEWORK_RIVAL_MOTIONS_HPP
 
 #include "framework/components.hpp"
 
@@ -49,4 +49,4 @@ private:
 } // namespace rcme
 } // namespace cv
 
-#endif // OPENCV_RCME_COMPONENTS_RIVAL_MOTIONS_HPP
+#endif // OPENCV_RCME_FRAMEWORK_RIVAL_MOTIONS_HPP

@@ -1,7 +1,7 @@
 // This file is part of the rcme module. It is subject to the license terms in the LICENSE file
 // found in the top-level directory of this distribution.
 
-#include "components/rival_motions.hpp"
+#include "framework/rival_motions.hpp"
 
 namespace cv {
 namespace rcme {
@@ -32,7 +32,7 @@ void RivalMotions::offer(const TwoViewData& data, const std::vector<int>& sample
         return;
     mostInliers_ = std::max(mostInliers_, score.inlierCount);
     Model motion = model;
-    if (!motion.hasMotion &&
+    if (!motion.motion &&
         !recoverMotionFromSample(data, sample, motion, samplePoints1_, samplePoints2_))
         return;
     for (Rival& rival : rivals_) {

@@ -1,0 +1,114 @@
+// This file is part of the rcme module. It is subject to the license terms in the LICENSE file
+// found in the top-level directory of this distribution.
+
+// The rival motion decision (the ambiguity test of Params::ambiguityMargin; calibrated data): the
+// data hold two answers when a distinct motion the loop saw (RivalMotions), refitted on the points
+// it explains itself, costs about as little as the selected one.
+
+#include "components/motion_support.hpp"
+#include "framework/component_factories.hpp"
+#include "framework/ransac_loop.hpp"
+#include "framework/refinement.hpp"
+#include "geometry/epipolar.hpp"
+
+namespace cv {
+namespace rcme {
+namespace detail {
+
+namespace {
+
+/* Each rival motion of the loop (SearchResult::rivals) with at least half the selected model's
+support and distinct from it is refitted on the points it explains itself; the motion of least
+truncated cost is kept (a rival can beat the selected one: the loop scores raw minimal-sample
+hypotheses; it then gets its own final fit), and when a distinct one comes within the margin of it
+(Estimate::rivalCostGap below the margin) the data do not tell the two: STATUS_UNDETERMINED_MOTION,
+the kept motion being the one turned down. Not on a planar scene's motion (its rivals are the
+homography's decompositions, weighed by the degeneracy test). */
+class RivalMotionDecision final : public EstimationStage
+{
+public:
+    explicit RivalMotionDecision(double margin) : margin_(margin) {}
+
+    StageOutcome run(const StageContext& context, const Estimate& estimate) override
+    {
+        const TwoViewData& data = context.data;
+        constexpr double kSupportShare = 0.5; // as RivalMotions' gate
+        if (!estimate.model.motion || estimate.planar)
+            return {};
+        // The cost is MSAC's, without the planar test's cheirality term: the depth sign of far
+        // points flips with the noise, and counting them as outliers handed small-baseline
+        // corridors to mirrored rivals. The four motions of one E share that cost, so a refitted
+        // rival's decomposition is chosen again by cheirality on all the points of its band, as the
+        // selected model's was: a rival whose sample's few points chose -t (forward motion, far
+        // points: on KITTI every rival within the margin was the selected motion with t reversed)
+        // is then the selected motion again, not an ambiguity. A rival's refit and its
+        // decomposition on a subset of a large problem; costs on every point.
+        const TwoViewData subset = data.size() > static_cast<int>(kMaxIteratedPoints)
+                                       ? evenlySpacedSubset(data, kMaxIteratedPoints)
+                                       : TwoViewData();
+        const TwoViewData& fitData = subset.points1.empty() ? data : subset;
+        std::vector<Model> motions{estimate.model};
+        std::vector<double> costs{truncatedCost(data, estimate.model.F)};
+        std::vector<uchar> within, inFront;
+        for (const RivalMotions::Rival& rival : context.search.rivals) {
+            if (rival.score.inlierCount < kSupportShare * estimate.score.inlierCount ||
+                !areDistinctMotions(rival.model, estimate.model))
+                continue;
+            Model refitted = rival.model;
+            if (refitOnOwnPoints(fitData, refitted, within, inFront).support <= 0)
+                continue;
+            if (recoverMotion(fitData, within, refitted) &&
+                areDistinctMotions(refitted, estimate.model)) {
+                motions.push_back(refitted);
+                costs.push_back(truncatedCost(data, refitted.F));
+            }
+        }
+        size_t best = 0;
+        for (size_t m = 1; m < motions.size(); ++m)
+            if (costs[m] < costs[best])
+                best = m;
+        StageOutcome outcome;
+        if (best != 0) {
+            // A rival explains the data better than the loop's choice: it becomes the estimate,
+            // with its own final fit.
+            Fit chosen{motions[best], Score(), {}};
+            context.scorer.classify(data, chosen.model, chosen.inliers);
+            chosen.score = context.scorer.score(data, chosen.model);
+            if (chosen.score.isCandidate) {
+                context.refinement.finalFit(data, chosen.model, chosen.inliers);
+                costs[best] = truncatedCost(data, chosen.model.F);
+                outcome = StageOutcome::revised(std::move(chosen));
+            } else {
+                best = 0;
+            }
+        }
+        double gap = std::numeric_limits<double>::infinity();
+        for (size_t m = 0; m < motions.size(); ++m)
+            if (m != best && areDistinctMotions(motions[m], motions[best]))
+                gap = std::min(gap, (costs[m] - costs[best]) / (data.sigma * data.sigma));
+        const double rivalCostGap = std::max(0.0, gap);
+        outcome.rivalCostGap = rivalCostGap;
+        if (rivalCostGap < margin_)
+            outcome.verdict = Verdict{
+                STATUS_UNDETERMINED_MOTION,
+                cv::format("a distinct motion explains the inliers about as well (cost gap %.1f "
+                           "sigma^2 < Params.ambiguityMargin %.1f): the motion is not determined",
+                           rivalCostGap, margin_),
+                outcome.model ? *outcome.model : estimate.model};
+        return outcome;
+    }
+
+private:
+    double margin_;
+};
+
+} // namespace
+
+std::unique_ptr<EstimationStage> createRivalMotionDecision(double margin)
+{
+    return std::make_unique<RivalMotionDecision>(margin);
+}
+
+} // namespace detail
+} // namespace rcme
+} // namespace cv
