@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # make test: runs every part of the test suite in order, times each one and ends with a table
 # of the parts and their wall times (also when a part fails, so that a budget regression or a
-# failure is visible in every CI log). The budget is stated in README.md ("Tests"): at most 45
+# failure is visible in every CI log). The budget is stated in doc/testing.md: at most 45
 # minutes on a cold 2-core machine, at most 15 minutes warm.
 #
 # Environment (set by the Makefile): BUILD_DIR, JOBS, FUZZ_SECONDS, INTREE (0 skips the in-tree

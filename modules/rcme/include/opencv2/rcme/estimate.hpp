@@ -51,7 +51,7 @@ CV_EXPORTS_W Mat findFundamentalMat(InputArray points1, InputArray points2, Inpu
 OpenCV's argument order and defaults).
 
 @param method an OpenCV flag (FM_7POINT, FM_8POINT, FM_LMEDS, FM_RANSAC, RHO, USAC_*), mapped to
-the rcme method of the same intent (README, "Drop-in"), or a #Method value.
+the rcme method of the same intent (doc/dropin.md), or a #Method value.
 @param ransacReprojThreshold inlier threshold in pixels; <= 0 or not finite: 3, as OpenCV.
 @param confidence in (0, 1); outside it 0.99, as OpenCV (NaN raises StsBadArg).
 @param maxIters iteration cap; <= 0 runs one iteration, as OpenCV.
