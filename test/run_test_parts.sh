@@ -65,6 +65,7 @@ part --required "Debian packages (make deps)" "$make_cmd" --no-print-directory d
 part --required "configure + Release build ($build_dir)" "$make_cmd" --no-print-directory build \
     BUILD_DIR="$build_dir" JOBS="$jobs"
 part "ctest, Release" bash -c "cd '$build_dir' && ctest --output-on-failure -j'$jobs'"
+part "API reference (make docs)" "$make_cmd" --no-print-directory docs BUILD_DIR="$build_dir"
 part "pip install . in a venv, Python tests" env JOBS="$jobs" BUILD_DIR="$build_dir" \
     test/python_pip/run_pip_test.sh
 part "ASan + UBSan build and C++ tests" env JOBS="$jobs" test/hardening/run_sanitizers.sh
