@@ -6,7 +6,9 @@ BUILD_DIR ?= build
 JOBS ?= 2
 DEB_PACKAGES := build-essential cmake ninja-build ccache pkg-config libopencv-dev libeigen3-dev \
 	libgtest-dev pybind11-dev libbenchmark-dev python3-dev python3-numpy python3-opencv \
-	python3-pytest dpkg-dev zlib1g-dev libpng-dev libjpeg-dev clang libclang-rt-14-dev python3-venv
+	python3-pytest dpkg-dev zlib1g-dev libpng-dev libjpeg-dev clang libclang-rt-14-dev python3-venv \
+	doxygen texlive-binaries
+# doxygen and texlive-binaries (its bibtex, for the headers' citations) are for make docs.
 # INTREE=0 skips the in-tree step of make test (OpenCV built from source with the module, see
 # test/opencv_intree/build_opencv_with_rcme.sh; dpkg-dev and the zlib/png/jpeg headers are for it).
 INTREE ?= 1
@@ -20,7 +22,8 @@ FUZZ_SECONDS ?= 60
 export CCACHE_BASEDIR ?= $(CURDIR)
 export CCACHE_NOHASHDIR = 1
 
-.PHONY: demo test test-intree test-pip sanitize sanitize-thread fuzz build configure deps
+# make docs: the API reference (doc/Doxyfile) in $(BUILD_DIR)/doc/html; any doxygen warning fails it.
+.PHONY: demo docs test test-intree test-pip sanitize sanitize-thread fuzz build configure deps
 
 demo: build
 	$(BUILD_DIR)/bin/rcme_two_view_demo --method rcme --out $(BUILD_DIR)/demo/two_view_demo.png
@@ -30,6 +33,14 @@ demo: build
 test:
 	BUILD_DIR=$(BUILD_DIR) JOBS=$(JOBS) FUZZ_SECONDS=$(FUZZ_SECONDS) INTREE=$(INTREE) \
 	  MAKE="$(MAKE)" test/run_test_parts.sh
+
+# The API reference of the public headers and the tutorials (doc/Doxyfile), warnings as errors.
+# Without texmf.cnf (texlive-base is not needed) bibtex finds the bibliography and doxygen's
+# style, both copied into doxygen's output folder, only through BIBINPUTS and BSTINPUTS.
+docs: deps
+	rm -rf $(BUILD_DIR)/doc
+	( cat doc/Doxyfile; echo "OUTPUT_DIRECTORY = $(BUILD_DIR)/doc" ) | BIBINPUTS=. BSTINPUTS=. doxygen -
+	@echo "API reference: $(BUILD_DIR)/doc/html/index.html"
 
 # ASan + UBSan build (build-sanitize/, clang, shared with the fuzzer) and every C++ test under it.
 sanitize: deps

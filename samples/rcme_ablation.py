@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """RCME's choices one at a time, and local optimisation, on the paper's corridor: the tables
-"RCME's choices (ablation)" and "Local optimisation" of doc/results.md.
+"RCME on the corridor" of doc/experiments_archive.md.
 
 Corridor, w = 0.5, sigma 1 px, N exactly, estimateRelativeMotion with K (what recoverPose runs);
 every configuration sees the same scenes and the same seeds.

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # make test: runs every part of the test suite in order, times each one and ends with a table
 # of the parts and their wall times (also when a part fails, so that a budget regression or a
-# failure is visible in every CI log). The budget is stated in README.md ("Tests"): at most 45
+# failure is visible in every CI log). The budget is stated in doc/testing.md: at most 45
 # minutes on a cold 2-core machine, at most 15 minutes warm.
 #
 # Environment (set by the Makefile): BUILD_DIR, JOBS, FUZZ_SECONDS, INTREE (0 skips the in-tree
@@ -65,6 +65,7 @@ part --required "Debian packages (make deps)" "$make_cmd" --no-print-directory d
 part --required "configure + Release build ($build_dir)" "$make_cmd" --no-print-directory build \
     BUILD_DIR="$build_dir" JOBS="$jobs"
 part "ctest, Release" bash -c "cd '$build_dir' && ctest --output-on-failure -j'$jobs'"
+part "API reference (make docs)" "$make_cmd" --no-print-directory docs BUILD_DIR="$build_dir"
 part "pip install . in a venv, Python tests" env JOBS="$jobs" BUILD_DIR="$build_dir" \
     test/python_pip/run_pip_test.sh
 part "ASan + UBSan build and C++ tests" env JOBS="$jobs" test/hardening/run_sanitizers.sh

@@ -6,7 +6,7 @@ the corridor (Table I) and every real sequence and pair in ../shared/data (Table
     ... --quick            (a subset in under two minutes; what `make test` runs)
 
 Writes <out>/report.md and PNG plots (default doc/benchmark/), caches SIFT matches under
-build/benchmark_cache/. See README.md, "Benchmark"."""
+build/benchmark_cache/. See doc/benchmark.md."""
 import argparse
 import datetime
 import json

@@ -1,6 +1,6 @@
 #!/usr/bin/python3
-"""The tuning study behind the defaults' failure signals after inner sampling (doc/results.md,
-"Inner sampling" and "Uncertainty bounds after inner sampling"): the default method, exactly
+"""The tuning study behind the defaults' failure signals after inner sampling
+(doc/experiments_archive.md, "Failure-signal tuning"): the default method, exactly
 N = 1000, on synthetic scenes the benchmark does not use (corridors from seed 100: 200 seeds at
 w = 0.3 and 0.5, sigma 1; 60 at sigma 0.5 and 2 and at w = 0.7; hard cases with seeds 100-129).
 

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""The tuning study behind Params.cleanSampleSuccessRate (doc/results.md, "Adaptive
+"""The tuning study behind Params.cleanSampleSuccessRate (doc/experiments_archive.md, "Adaptive
 termination"): the default method with adaptive termination on synthetic scenes whose seeds the
 benchmark does not use (corridor seeds 100-299, hard cases 100-109; the benchmark reports on
 0-49 and 0-9), for several q. Prints per q and suite: right / undetected / caught / false alarm

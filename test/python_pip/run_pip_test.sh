@@ -7,7 +7,9 @@
 # NumPy from PyPI (NUMPY, default "numpy>=2,<3"), `pip install <repo>` (scikit-build-core and
 # pybind11 come from PyPI in pip's isolated build environment), then, from outside the
 # repository, pytest on modules/rcme/misc/python/test (RCME_TEST_REQUIRE=standalone: a package
-# that does not import fails instead of skipping) and README.md's Python example; then pip's
+# that does not import fails instead of skipping), then every Python block of README.md,
+# doc/python.md and the tutorials, the Dask and Ray recipe on their local schedulers (DOCS=0
+# skips it); then pip's
 # opencv-python-headless in the same venv and test_cv2_coexistence.py (cv2 and rcme in one
 # process, arrays passed between them; COEXIST=0 skips it), after mypy on typed_use.py with
 # the installed type stub (TYPECHECK=0 skips it). The venv is made anew on every run
@@ -46,9 +48,20 @@ print("rcme from %s, NumPy %s" % (folder, numpy.__version__))
 PY
 RCME_TEST_REQUIRE=standalone PYTHONDONTWRITEBYTECODE=1 \
   "$venv/bin/python" -m pytest -q -p no:cacheprovider "$repo/modules/rcme/misc/python/test"
-"$venv/bin/python" "$repo/test/python_pip/run_readme_example.py" "$repo/README.md"
 tested=$(date +%s)
 echo "run_pip_test: venv + install $((installed - start)) s, tests $((tested - installed)) s"
+
+# The Python blocks of README.md, doc/python.md and the tutorials on the installed package
+# (test/docs/run_python_blocks.py), with the many-machines recipe on dask's and ray's local
+# schedulers: both from PyPI, into this venv only (DOCS=0 skips the step, which downloads them).
+if [ "${DOCS:-1}" != 0 ]; then
+  "$venv/bin/python" -m pip install --quiet dask ray
+  mapfile -t tutorials < <(find "$repo/modules/rcme/tutorials" -name '*.markdown' | sort)
+  PYTHONDONTWRITEBYTECODE=1 "$venv/bin/python" "$repo/test/docs/run_python_blocks.py" \
+    "$repo/README.md" "$repo/doc/python.md" "${tutorials[@]}"
+  echo "run_pip_test: dask + ray install, the docs' Python blocks $(($(date +%s) - tested)) s"
+  tested=$(date +%s)
+fi
 
 # The type stub as an editor's checker reads it (TYPECHECK=0 skips: it downloads mypy).
 if [ "${TYPECHECK:-1}" != 0 ]; then

@@ -4,8 +4,8 @@
 // Whole calls on the corridor scene (inlier ratio 0.5, sigma 1 px): every method, calibrated
 // (estimateRelativeMotion with K, the camera motion) and uncalibrated (F), exactly N iterations
 // or adaptive with at most N, next to OpenCV's FM_RANSAC run for exactly the same N.
-// Run: build/bin/opencv_perf_rcme; check_targets.py turns one run into the ratios (README,
-// "Performance"; doc/performance.md).
+// Run: build/bin/opencv_perf_rcme; check_targets.py turns one run into the ratios
+// (doc/performance.md).
 
 #include "perf_precomp.hpp"
 

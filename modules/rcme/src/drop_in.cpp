@@ -30,7 +30,7 @@ constexpr int kDefaultMaxIters = 1000; // the forms without maxIters
 // The inlier threshold is 1.96 sigma (Params::threshold), so a drop-in threshold implies sigma.
 constexpr double kThresholdPerSigma = 1.959963984540054;
 
-// OpenCV's method flags, mapped to the rcme method of the same intent (README, "Drop-in").
+// OpenCV's method flags, mapped to the rcme method of the same intent (doc/dropin.md).
 void applyMethodFlag(int method, Params& p)
 {
     if (method >= METHOD_RCME && method <= METHOD_COV_RANSAC) {

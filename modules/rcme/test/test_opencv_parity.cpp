@@ -5,7 +5,7 @@
 // findEssentialMat and recoverPose is called with the same valid and invalid arguments through
 // cv:: and cv::rcme::. Both must accept or both must reject (with a cv::Exception), and on
 // accepted input rcme's mask must have OpenCV's shape and type, except for the deliberate
-// differences listed in kDeliberate (README, "Drop-in", says why).
+// differences listed in kDeliberate (doc/dropin.md says why).
 
 #include "test_precomp.hpp"
 
@@ -91,7 +91,7 @@ template <class Call> CallResult runCall(const Call& call)
     return r;
 }
 
-// A deliberate difference: what each side does, and why (the README's table says the same).
+// A deliberate difference: what each side does, and why (doc/dropin.md's table says the same).
 struct Deliberate
 {
     const char* prefix; //!< applies to the cases whose name starts with it
@@ -491,7 +491,7 @@ TEST(Rcme_OpenCVParity, recover_pose_of_an_empty_e_is_a_standing_camera)
 }
 
 // A pure rotation (with K) has no E: the E forms answer "nothing found" (empty E, zero mask, as
-// the README promises), and the two-camera recoverPose returns the rotation with t = 0 and its
+// doc/dropin.md promises), and the two-camera recoverPose returns the rotation with t = 0 and its
 // inliers (a turn on the spot is a motion OpenCV code can use).
 TEST(Rcme_OpenCVParity, a_pure_rotation_has_no_e_and_recover_pose_keeps_its_rotation)
 {

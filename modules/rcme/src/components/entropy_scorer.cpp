@@ -104,7 +104,7 @@ public:
     // spread a model's own uncertainty adds, and a model refined on all its inliers has almost
     // none, so comparing psi across refinement steps compares noise and favours a refit that
     // sheds points. Gated on psi, the refinement stayed in the basin of a tight subset (clean
-    // corridor data: median dq 0.0108 against 0.0034, doc/results.md "Box 4's gate").
+    // corridor data: median dq 0.0108 against 0.0034, doc/experiments_archive.md, "Box 4's gate").
     bool keepsRefinement(const Score&, const Score& refined) const override
     {
         return refined.isCandidate;

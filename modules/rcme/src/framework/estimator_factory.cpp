@@ -56,7 +56,7 @@ bool usesSprt(const Params& params, const TwoViewData& data)
 
 // A few steps suffice: the refit only has to reach its basin's bottom, and it runs often.
 constexpr int kLocalOptimizationIterations = 5;
-// Inner minimal samples per round of inner sampling (doc/results.md, "Inner sampling": on the
+// Inner minimal samples per round of inner sampling (doc/experiments_archive.md, "Inner sampling": on the
 // tuning corridors at w = 0.3, 20, 50, 100 and 200 left 17, 12, 5 and 2 of 200 wrong motions
 // with success, 31 without; 200 raised the false alarms from 5 to 11).
 constexpr int kInnerSamplesPerRound = 100;
@@ -66,7 +66,7 @@ constexpr int kInnerSamplesPerRound = 100;
 // Params::cleanSampleSuccessRate (0.3), because a wrong motion costs far more than 100 inner
 // samples: with 1000 5-point samples it turns inner sampling on below inlier ratios of about
 // 0.55, where the corridor's loops select wrong motions, and not on the real pairs' (median time
-// unchanged). On the tuning scenes (doc/results.md, "Inner sampling below w = 0.55"), exactly
+// unchanged). On the tuning scenes (doc/experiments_archive.md, "Inner sampling"), exactly
 // N = 1000, q = 0.3, 0.2, 0.15, 0.1 left 15, 12, 9, 9 wrong motions with success of 820 runs;
 // 0.1 flagged fewer right ones than 0.15.
 constexpr double kInnerSamplingSuccessRate = 0.1;

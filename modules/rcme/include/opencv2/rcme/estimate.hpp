@@ -15,7 +15,7 @@ namespace rcme {
 /** @brief Estimates the two-view geometry and returns everything in one Report.
 
 @param points1 N points of the first image: Nx2, 1xN or Nx1 with two channels (CV_32F or CV_64F),
-or a std::vector<Point2f>/<Point2d>. Must be finite.
+or a std::vector of Point2f or Point2d. Must be finite.
 @param points2 The N corresponding points of the second image, same layout rules.
 @param cameraMatrix 3x3 intrinsic matrix shared by both views, or an empty array for the
 uncalibrated case (then only F is estimated).
@@ -50,32 +50,37 @@ CV_EXPORTS_W Mat findFundamentalMat(InputArray points1, InputArray points2, Inpu
 /** @brief Drop-in for cv::findFundamentalMat (every OpenCV 4.6 form has a twin below, with
 OpenCV's argument order and defaults).
 
+@param points1 see estimateRelativeMotion.
+@param points2 see estimateRelativeMotion.
 @param method an OpenCV flag (FM_7POINT, FM_8POINT, FM_LMEDS, FM_RANSAC, RHO, USAC_*), mapped to
-the rcme method of the same intent (README, "Drop-in"), or a #Method value.
+the rcme method of the same intent (doc/dropin.md), or a #Method value.
 @param ransacReprojThreshold inlier threshold in pixels; <= 0 or not finite: 3, as OpenCV.
 @param confidence in (0, 1); outside it 0.99, as OpenCV (NaN raises StsBadArg).
 @param maxIters iteration cap; <= 0 runs one iteration, as OpenCV.
 @param mask output Nx1 CV_8U inlier mask, always written (zeros on failure).
 @return F, or an empty matrix when no trustworthy F was found (OpenCV's "nothing found"): the
-OpenCV forms never throw on well-formed input; the #Params forms tell why.
+OpenCV forms never throw on well-formed input; the forms with Params tell why.
 */
 CV_EXPORTS_W Mat findFundamentalMat(InputArray points1, InputArray points2, int method,
                                     double ransacReprojThreshold, double confidence, int maxIters,
                                     OutputArray mask = noArray());
 
-/** @overload As in calib3d, callable from Python as findFundamentalMat(points1, points2[, method
+/** @overload
+As in calib3d, callable from Python as findFundamentalMat(points1, points2[, method
 [, ransacReprojThreshold[, confidence[, mask]]]]); the overloads above are tried first. */
 CV_EXPORTS_W Mat findFundamentalMat(InputArray points1, InputArray points2, int method = FM_RANSAC,
                                     double ransacReprojThreshold = 3., double confidence = 0.99,
                                     OutputArray mask = noArray());
 
-/** @overload The mask-first form. Not wrapped for Python, as in calib3d (it would clash with the
+/** @overload
+The mask-first form. Not wrapped for Python, as in calib3d (it would clash with the
 form above). */
 CV_EXPORTS Mat findFundamentalMat(InputArray points1, InputArray points2, OutputArray mask,
                                   int method = FM_RANSAC, double ransacReprojThreshold = 3.,
                                   double confidence = 0.99);
 
-/** @overload With cv::UsacParams: confidence (outside (0, 1): 0.99), maxIterations (<= 0: one),
+/** @overload
+With cv::UsacParams: confidence (outside (0, 1): 0.99), maxIterations (<= 0: one),
 threshold (<= 0: 1.5, UsacParams' default), randomGeneratorState, isParallel, sampler (NAPSAC
 samplers run uniform sampling) and score (SCORE_METHOD_MAGSAC selects #METHOD_MLESAC) are used;
 the rest has no counterpart. */
@@ -84,8 +89,12 @@ CV_EXPORTS_W Mat findFundamentalMat(InputArray points1, InputArray points2, Outp
 
 /** @brief Essential matrix with an explicit status.
 
+@param points1 see estimateRelativeMotion.
+@param points2 see estimateRelativeMotion.
 @param cameraMatrix 3x3 intrinsic matrix shared by both views (required).
-@param params, mask, status as in findFundamentalMat.
+@param params method and parameters.
+@param mask output Nx1 CV_8U inlier mask, always written (zeros on failure).
+@param status outcome; the returned matrix is empty unless it is #STATUS_SUCCESS.
 @return 3x3 CV_64F essential matrix with singular values (1, 1, 0).
 */
 CV_EXPORTS_W Mat findEssentialMat(InputArray points1, InputArray points2, InputArray cameraMatrix,
@@ -93,31 +102,39 @@ CV_EXPORTS_W Mat findEssentialMat(InputArray points1, InputArray points2, InputA
 
 /** @brief Drop-in for cv::findEssentialMat.
 
+@param points1 see estimateRelativeMotion.
+@param points2 see estimateRelativeMotion.
+@param cameraMatrix 3x3 intrinsic matrix shared by both views.
 @param method as in findFundamentalMat's drop-in.
 @param prob confidence, in (0, 1) (outside it StsBadArg, as OpenCV).
 @param threshold inlier threshold in pixels; <= 0 or not finite: 1, OpenCV's default.
 @param maxIters iteration cap; <= 0 runs one iteration, as OpenCV.
+@param mask output Nx1 CV_8U inlier mask, always written (zeros on failure).
 @return E, or an empty matrix on failure (never an exception on well-formed input).
 */
 CV_EXPORTS_W Mat findEssentialMat(InputArray points1, InputArray points2, InputArray cameraMatrix,
                                   int method = RANSAC, double prob = 0.999, double threshold = 1.0,
                                   int maxIters = 1000, OutputArray mask = noArray());
 
-//! @overload Without maxIters (1000), the form of OpenCV's documentation example; not wrapped.
+/** @overload
+Without maxIters (1000), the form of OpenCV's documentation example; not wrapped. */
 CV_EXPORTS Mat findEssentialMat(InputArray points1, InputArray points2, InputArray cameraMatrix,
                                 int method, double prob, double threshold, OutputArray mask);
 
-//! @overload Camera matrix given by focal length and principal point, as in OpenCV.
+/** @overload
+Camera matrix given by focal length and principal point, as in OpenCV. */
 CV_EXPORTS_W Mat findEssentialMat(InputArray points1, InputArray points2, double focal = 1.0,
                                   Point2d pp = Point2d(0, 0), int method = RANSAC,
                                   double prob = 0.999, double threshold = 1.0, int maxIters = 1000,
                                   OutputArray mask = noArray());
 
-//! @overload Focal length and principal point, without maxIters (1000); not wrapped.
+/** @overload
+Focal length and principal point, without maxIters (1000); not wrapped. */
 CV_EXPORTS Mat findEssentialMat(InputArray points1, InputArray points2, double focal, Point2d pp,
                                 int method, double prob, double threshold, OutputArray mask);
 
-/** @overload Two cameras with distortion, as OpenCV does it: both point sets are undistorted
+/** @overload
+Two cameras with distortion, as OpenCV does it: both point sets are undistorted
 (cv::undistortPoints) and mapped back to pixels by the mean of the two camera matrices, which is
 then the camera matrix of the estimate (so the threshold stays in pixels). */
 CV_EXPORTS_W Mat findEssentialMat(InputArray points1, InputArray points2, InputArray cameraMatrix1,
@@ -125,7 +142,8 @@ CV_EXPORTS_W Mat findEssentialMat(InputArray points1, InputArray points2, InputA
                                   InputArray distCoeffs2, int method = RANSAC, double prob = 0.999,
                                   double threshold = 1.0, OutputArray mask = noArray());
 
-/** @overload Two cameras with distortion and cv::UsacParams (note OpenCV's argument order: both
+/** @overload
+Two cameras with distortion and cv::UsacParams (note OpenCV's argument order: both
 camera matrices, then both distortion vectors); UsacParams as in findFundamentalMat. */
 CV_EXPORTS_W Mat findEssentialMat(InputArray points1, InputArray points2, InputArray cameraMatrix1,
                                   InputArray cameraMatrix2, InputArray dist_coeff1,
@@ -134,8 +152,13 @@ CV_EXPORTS_W Mat findEssentialMat(InputArray points1, InputArray points2, InputA
 
 /** @brief Estimates E robustly and recovers the motion, with status and covariance.
 
+@param points1 see estimateRelativeMotion.
+@param points2 see estimateRelativeMotion.
+@param cameraMatrix 3x3 intrinsic matrix shared by both views (required).
 @param E output essential matrix.
-@param R output 3x3 rotation, @param t output 3x1 unit translation: x2 = R x1 + t.
+@param R output 3x3 rotation.
+@param t output 3x1 unit translation: x2 = R x1 + t.
+@param params method and parameters.
 @param mask output Nx1 CV_8U mask of the inliers that also pass cheirality (points in front of
 both cameras), as cv::recoverPose leaves it.
 @param status outcome; E, R, t are empty unless it is #STATUS_SUCCESS.
@@ -151,8 +174,18 @@ CV_EXPORTS_W int recoverPose(InputArray points1, InputArray points2, InputArray 
 /** @brief Drop-in for cv::recoverPose of two cameras with distortion: estimates E robustly
 (as the two-camera findEssentialMat) and recovers the motion from it.
 
-@param E output essential matrix, @param R output rotation, @param t output unit translation.
-@param method, prob, threshold as in findEssentialMat.
+@param points1 see estimateRelativeMotion.
+@param points2 see estimateRelativeMotion.
+@param cameraMatrix1 3x3 intrinsic matrix of the first camera.
+@param distCoeffs1 distortion coefficients of the first camera, as cv::undistortPoints reads them.
+@param cameraMatrix2 3x3 intrinsic matrix of the second camera.
+@param distCoeffs2 distortion coefficients of the second camera.
+@param E output essential matrix.
+@param R output rotation.
+@param t output unit translation.
+@param method as in findEssentialMat.
+@param prob as in findEssentialMat.
+@param threshold as in findEssentialMat.
 @param mask output Nx1 CV_8U mask of the inliers that pass cheirality.
 @return that number; on failure 0 with E empty, R = identity, t = 0 and a zero mask.
 */
@@ -165,6 +198,11 @@ CV_EXPORTS_W int recoverPose(InputArray points1, InputArray points2, InputArray 
 /** @brief Drop-in for cv::recoverPose from a known essential matrix: decomposes E and keeps the
 (R, t) that puts the most points in front of both cameras.
 
+@param points1 see estimateRelativeMotion.
+@param points2 see estimateRelativeMotion.
+@param cameraMatrix 3x3 intrinsic matrix shared by both views.
+@param R output 3x3 rotation.
+@param t output 3x1 unit translation.
 @param E 3x3 essential matrix. An empty (or all-zero) E, what findEssentialMat returns when it
 finds nothing, gives 0 with R = identity, t = 0 and a zero mask, so that OpenCV code keeps
 running on a bad frame (cv::recoverPose would throw).
@@ -176,12 +214,14 @@ CV_EXPORTS_W int recoverPose(InputArray E, InputArray points1, InputArray points
                              InputArray cameraMatrix, OutputArray R, OutputArray t,
                              InputOutputArray mask = noArray());
 
-//! @overload Camera matrix given by focal length and principal point.
+/** @overload
+Camera matrix given by focal length and principal point. */
 CV_EXPORTS_W int recoverPose(InputArray E, InputArray points1, InputArray points2, OutputArray R,
                              OutputArray t, double focal = 1.0, Point2d pp = Point2d(0, 0),
                              InputOutputArray mask = noArray());
 
-/** @overload Points count only when they triangulate closer than distanceThresh (in units of the
+/** @overload
+Points count only when they triangulate closer than distanceThresh (in units of the
 baseline |t| = 1) in front of both cameras; triangulatedPoints receives the 4xN homogeneous
 points (CV_64F, first camera frame, normalized coordinates) of the chosen decomposition, as
 cv::recoverPose gives them. */

@@ -55,8 +55,7 @@ enum MinimalSolverKind
     SOLVER_SEVEN_POINT = 1, //!< 7-point, up to three F (exact)
     SOLVER_FIVE_POINT = 2,  //!< 5-point, up to ten E (exact, needs the camera matrix)
     /** the 5-point solver when a camera matrix is given, the 8-point one otherwise: with K the
-    5-point solver gave the fewest wrong motions of the three (doc/results.md, "Failure
-    signals") */
+    5-point solver returned the fewest wrong motions of the three (doc/results.md) */
     SOLVER_AUTO = 3
 };
 
@@ -84,12 +83,8 @@ enum VerificationKind
 Only #STATUS_SUCCESS comes with a model, and #STATUS_PURE_ROTATION with a rotation; with any
 other status the returned matrices are empty and the mask is all zeros.
 
-How often a status was right, with the default Params on the benchmark's runs with ground truth
-(exactly 1000 iterations, the pairs the ground truth can judge; README.md and doc/results.md,
-"Inner sampling below w = 0.55" and "The hard-case suite completed"): a success came with a
-right model in 792 of 801 runs (357 of 357 calibrated real pairs, 111 of 114 F-only pairs, 324
-of 330 synthetic scenes); of 36 other statuses, the model turned down was wrong in 29 and right
-in 7.
+How often each status is right against ground truth is measured in doc/results.md ("Statuses
+against ground truth").
 */
 enum Status
 #ifndef OPENCV_BINDING_PARSER // OpenCV 4.6's binding generator cannot read an enum base
@@ -168,9 +163,8 @@ struct CV_EXPORTS_W_SIMPLE Params
     /** Fraction q of all-inlier samples assumed to give a hypothesis of the right motion, in
     (0, 1]: the adaptive bound is N = log(1 - confidence) / log(1 - q w^m). 1 is the classic
     bound (asPublished). A clean minimal sample of noisy points seen by a narrow field of view
-    often fits a wrong motion, so the classic bound stops too early: on the tuning corridor
-    scenes (w = 0.5, 200 seeds) the default method returned 19 wrong motions with success at
-    q = 1 and 5 at q = 0.3, 0.2 or 0.1 (doc/results.md, "Adaptive termination"). Default 0.3. */
+    often fits a wrong motion, so the classic bound stops too early (doc/results.md). Default
+    0.3. */
     CV_PROP_RW double cleanSampleSuccessRate;
     /** Maximum number of iterations (hypothesis draws), in [1, 10^7] (OpenCV's forms clamp
     their maxIters into that range). Default 1000. */
@@ -204,7 +198,7 @@ struct CV_EXPORTS_W_SIMPLE Params
     /** RCME: Gauss-Newton iterations fitting each hypothesis to its own minimal sample before its
     covariance is computed; 0 keeps the solver's output, as the paper. Default 5: with 0, the
     essential matrix projected from an 8-point F rarely fits its own sample and the consistency
-    test rejects ~90 % of the corridor scenes (doc/results.md). */
+    test rejects most corridor scenes (doc/experiments_archive.md). */
     CV_PROP_RW int sampleFitIterations;
     /** RCME's consistency test: give the samples the leverage-corrected variance
     sigma^2 - g Sigma g^T (they built the model) instead of the paper's sigma^2 + g Sigma g^T. */
@@ -220,8 +214,8 @@ struct CV_EXPORTS_W_SIMPLE Params
     samples, adaptive or not), minimal samples drawn from the best candidate's inliers
     (LO-RANSAC's inner sampling; 100 per round, up to 4 rounds while they improve it) compete
     too: a wrong motion's inliers are mostly true ones, so they find the true motion that the
-    loop's few clean samples missed (doc/results.md, "Inner sampling" and "Inner sampling below
-    w = 0.55"). Other loops are not changed. Default true (the paper's experiments: false). */
+    loop's few clean samples missed (doc/results.md). Other loops are not changed. Default true
+    (the paper's experiments: false). */
     CV_PROP_RW bool localOptimization;
     /** After the loop, compare the final inliers' fit by F with their fit by a homography
     (Torr's GRIC @cite Torr1998GRIC). When the homography explains them at least as well (a planar
@@ -238,15 +232,13 @@ struct CV_EXPORTS_W_SIMPLE Params
     camera costing as an outlier) is returned, and when a distinct motion's cost is within this
     many sigma^2 of it (Report::rivalCostGap, twice a log-likelihood ratio) the status is
     #STATUS_UNDETERMINED_MOTION. <= 0 disables the test (the rivals are then neither refitted
-    nor compared). Default 2, chosen on synthetic scenes (doc/results.md, "Failure signals");
-    the paper's experiments: 0. */
+    nor compared). Default 2, chosen on synthetic scenes (doc/experiments_archive.md); the
+    paper's experiments: 0. */
     CV_PROP_RW double ambiguityMargin;
     /** The uncertainty test, with a camera matrix and refinement: a motion whose rotation
     standard deviation about an axis (Report::rotationStdDeg) exceeds this many degrees gives
     #STATUS_UNDETERMINED_MOTION. <= 0 disables it. Default 4 deg, chosen with inner sampling's
-    trigger on the synthetic tuning scenes (doc/results.md, "Inner sampling for w up to 0.55"):
-    with (4, 8) 9 of 722 right motions flagged against 14 for (2, 6), the same 9 wrong ones
-    missed; the paper's experiments: 0. */
+    trigger on synthetic scenes (doc/experiments_archive.md); the paper's experiments: 0. */
     CV_PROP_RW double maxRotationStdDeg;
     /** The same for the translation direction (Report::translationStdDeg), degrees. <= 0
     disables it. Default 8 deg, chosen with maxRotationStdDeg; the paper's experiments: 0. */
