@@ -59,8 +59,8 @@ same intent (README, "Drop-in"), or a #Method value; other values raise StsBadAr
 @param ransacReprojThreshold inlier threshold in pixels; <= 0 or not finite: 3, as OpenCV.
 @param confidence in (0, 1); outside it 0.99, as OpenCV (NaN raises StsBadArg).
 @param maxIters iteration cap; <= 0 runs one iteration, as OpenCV.
-@param mask output CV_8U inlier mask, always written (zeros on failure), where OpenCV writes it: into
-the caller's Nx1 CV_8U array, and outside USAC also into a continuous 1xN one; else a new Nx1.
+@param mask output CV_8U inlier mask, always written (zeros on failure), where OpenCV writes it:
+into the caller's Nx1 CV_8U array, and outside USAC also into a continuous 1xN one; else a new Nx1.
 @return F in OpenCV's scale (F(2,2) = 1 where it is not 0), or an empty matrix when no trustworthy F
 was found (OpenCV's "nothing found"): the OpenCV forms never throw on well-formed input; the
 #Params forms tell why. On fewer than 15 points that all agree with an F (within the threshold),
