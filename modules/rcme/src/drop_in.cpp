@@ -490,7 +490,9 @@ Mat findFundamentalMat(InputArray points1, InputArray points2, OutputArray mask,
 Mat findEssentialMat(InputArray points1, InputArray points2, InputArray cameraMatrix, int method,
                      double prob, double threshold, int maxIters, OutputArray mask)
 {
-    const Params params = essentialParams(method, prob, threshold, maxIters);
+    // OpenCV's findEssentialMat hands USAC 1000 iterations, whatever maxIters says.
+    const Params params =
+        essentialParams(method, prob, threshold, isUsacFlag(method) ? kDefaultMaxIters : maxIters);
     if (isUsacFlag(method))
         return essentialDropIn(usacLayoutPoints(points1), usacLayoutPoints(points2), cameraMatrix,
                                params, false, mask);
