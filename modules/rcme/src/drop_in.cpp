@@ -10,6 +10,7 @@
 #include "precomp.hpp"
 
 #include "drop_in/agreeing_points.hpp"
+#include "drop_in/opencv_inlier_mask.hpp"
 #include "framework/two_view_data.hpp"
 #include "geometry/epipolar.hpp"
 
@@ -265,19 +266,37 @@ Mat essentialInOpenCVScale(const Mat& E)
 /* The model of few points that all agree with it (drop_in/agreeing_points.hpp), where the
 estimate refused for want of evidence (no support beyond chance, not enough points for its solver,
 an undetermined motion); a degenerate configuration or a pure rotation is evidence and stays
-refused. The mask then marks every point, as OpenCV's. */
-void answerAgreeingPoints(InputArray points1, InputArray points2, InputArray cameraMatrix,
-                          const Params& params, bool stackSolutions, Report& report, Mat& model)
+refused. */
+void answerAgreeingPoints(const detail::TwoViewData& data, Status status, bool stackSolutions,
+                          Mat& model)
 {
-    const Status s = report.status;
-    if (!model.empty() || static_cast<int>(report.mask.total()) >= detail::kDropInFewPoints ||
-        (s != STATUS_POOR_QUALITY_INPUT && s != STATUS_NOT_ENOUGH_POINTS &&
-         s != STATUS_UNDETERMINED_MOTION))
-        return;
-    model = detail::modelOfAgreeingPoints(
-        detail::makeTwoViewData(points1, points2, cameraMatrix, params), stackSolutions);
-    if (!model.empty())
-        report.mask.setTo(1);
+    if (model.empty() && data.size() < detail::kDropInFewPoints &&
+        (status == STATUS_POOR_QUALITY_INPUT || status == STATUS_NOT_ENOUGH_POINTS ||
+         status == STATUS_UNDETERMINED_MOTION))
+        model = detail::modelOfAgreeingPoints(data, stackSolutions);
+}
+
+/* The drop-in's answer in OpenCV's terms: the model, found by the estimate or agreed by few points,
+and the mask of the points within the threshold of it by the distance of the OpenCV estimator the
+form stands for (drop_in/opencv_inlier_mask.hpp), or zeros without a model. `classic`: a form
+OpenCV runs outside USAC (its RANSAC and LMedS: stacked minimal solutions, a 1xN mask buffer
+kept). */
+Mat answerAsOpenCV(InputArray points1, InputArray points2, InputArray cameraMatrix,
+                   const Params& params, bool classic, OutputArray mask)
+{
+    const Report report = estimateRelativeMotion(points1, points2, cameraMatrix, params);
+    const detail::TwoViewData data =
+        detail::makeTwoViewData(points1, points2, cameraMatrix, params);
+    Mat model = data.calibrated ? report.E : report.F;
+    answerAgreeingPoints(data, report.status, classic, model);
+    using Distance = detail::OpenCVInlierDistance;
+    const Distance distance =
+        data.calibrated ? (classic ? Distance::Sampson : Distance::SymmetricEpipolarDistance)
+                        : (classic ? Distance::LargerEpipolarLineDistance : Distance::Sampson);
+    writeOpenCVMask(model.empty() ? Mat(data.size(), 1, CV_8U, Scalar(0))
+                                  : detail::opencvInlierMask(data, model, distance),
+                    mask, classic);
+    return data.calibrated ? essentialInOpenCVScale(model) : fundamentalInOpenCVScale(model);
 }
 
 Mat cameraMatrixFromFocal(double focal, Point2d pp)
@@ -337,15 +356,10 @@ void writeStandingCamera(OutputArray R, OutputArray t)
 }
 
 // findFundamentalMat's answer in OpenCV's terms: F in its scale, or an empty F with a zero mask.
-// `classic`: a form OpenCV runs outside USAC (stacked minimal solutions, a 1xN mask buffer kept).
 Mat fundamentalDropIn(const Mat& points1, const Mat& points2, const Params& params, bool classic,
                       OutputArray mask)
 {
-    Report report = estimateRelativeMotion(points1, points2, noArray(), params);
-    Mat F = report.F;
-    answerAgreeingPoints(points1, points2, noArray(), params, classic, report, F);
-    writeOpenCVMask(report.mask, mask, classic);
-    return fundamentalInOpenCVScale(F);
+    return answerAsOpenCV(points1, points2, noArray(), params, classic, mask);
 }
 
 // findEssentialMat's answer in OpenCV's terms: E in its scale, or an empty E with a zero mask.
@@ -356,13 +370,7 @@ Mat essentialDropIn(InputArray points1, InputArray points2, InputArray cameraMat
 {
     if (cameraMatrix.empty())
         CV_Error(Error::StsBadArg, "cameraMatrix is required (use findFundamentalMat without it)");
-    Report report = estimateRelativeMotion(points1, points2, cameraMatrix, params);
-    Mat E = report.E;
-    answerAgreeingPoints(points1, points2, cameraMatrix, params, classic, report, E);
-    if (E.empty())
-        report.mask.setTo(0);
-    writeOpenCVMask(report.mask, mask, classic);
-    return essentialInOpenCVScale(E);
+    return answerAsOpenCV(points1, points2, cameraMatrix, params, classic, mask);
 }
 
 // The selection recoverPose's mask argument makes on input: all points when it is empty.

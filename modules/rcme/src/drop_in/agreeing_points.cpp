@@ -107,6 +107,11 @@ Mat modelOfAgreeingPoints(const TwoViewData& data, bool stackSolutions)
     }
     Model best =
         agreeing[static_cast<size_t>(std::min_element(costs.begin(), costs.end()) - costs.begin())];
+    // Two distinct motions that every point agrees with: the points do not determine the motion.
+    if (data.calibrated)
+        for (const Model& model : agreeing)
+            if (areDistinctMotions(model, best))
+                return Mat();
     // The Gold Standard fit on all the points, kept when they all still agree with it.
     Model refined = best;
     std::vector<int> all(static_cast<size_t>(n));

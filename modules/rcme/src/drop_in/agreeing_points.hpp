@@ -25,7 +25,9 @@ distance within the inlier threshold and, with a camera matrix, in front of both
 - Exactly the minimal count (7 or 5 points): all of them, stacked (3k x 3) as OpenCV stacks them
   when `stackSolutions`; otherwise only a unique one (the data cannot choose among several).
 - More points: the one of least cost (sum of squared Sampson distances), refined by the Gold
-  Standard fit on all the points when they all still agree with the refit.
+  Standard fit on all the points when they all still agree with the refit; with a camera matrix
+  none when another agreeing motion is distinct from it (areDistinctMotions): the points do not
+  determine the motion.
 
 Returns F (pixels, unit norm) or E (unit Frobenius norm), CV_64F; empty when no solution has every
 point's agreement (a point that disagrees with each: evidence against them all). */
