@@ -844,3 +844,98 @@ TEST(Rcme_OpenCVParity, few_consistent_points_give_opencvs_answer)
 
 } // namespace
 } // namespace opencv_test
+
+namespace opencv_test {
+namespace {
+
+// Where a call left the caller's mask buffer (filled with 7 before it).
+struct BufferUse
+{
+    bool inPlace = false; //!< the Mat still points into the caller's buffer
+    bool written = false; //!< no sentinel left in the buffer, every entry 0 or 1
+    Size size;
+};
+
+/* Issue 34, item 5: OpenCV writes the mask into the caller's existing CV_8U buffer (an Nx1 array
+in every form, a continuous 1xN one in calib3d's RANSAC and LMedS), a row of a larger matrix or a
+header over the caller's data; rcme writes into the same buffers, and replaces the same others. */
+TEST(Rcme_OpenCVParity, the_mask_goes_into_the_callers_buffer_where_opencv_writes_it)
+{
+    const SyntheticScene s = genericTestScene(3, 1.0, 60);
+    const Mat p1 = s.points1, p2 = s.points2, K = s.cameraMatrix, E = s.E;
+    const int n = p1.rows;
+    std::vector<Case> forms;
+    const auto addForm = [&forms](std::string name, auto f) {
+        forms.push_back(makeCase(std::move(name), f));
+    };
+    for (int m : {int(FM_RANSAC), int(FM_LMEDS), int(FM_8POINT), int(USAC_DEFAULT)})
+        addForm("F method " + std::to_string(m),
+                [=](auto api, Mat& k) { api.fundamental(p1, p2, m, 3., 0.99, 1000, k); });
+    addForm("F UsacParams", [=](auto api, Mat& k) { api.fundamental(p1, p2, k, UsacParams()); });
+    for (int m : {int(RANSAC), int(LMEDS), int(USAC_DEFAULT)})
+        addForm("E method " + std::to_string(m),
+                [=](auto api, Mat& k) { api.essential(p1, p2, K, m, 0.999, 1., 50, k); });
+    addForm("E two cameras", [=](auto api, Mat& k) {
+        api.essential(p1, p2, K, noArray(), K, noArray(), RANSAC, 0.999, 1., k);
+    });
+    addForm("E UsacParams", [=](auto api, Mat& k) {
+        api.essential(p1, p2, K, K, noArray(), noArray(), k, UsacParams());
+    });
+    addForm("R two cameras", [=](auto api, Mat& k) {
+        Mat e, R, t;
+        api.pose(p1, p2, K, noArray(), K, noArray(), e, R, t, RANSAC, 0.999, 1.0, k);
+    });
+    addForm("R from E", [=](auto api, Mat& k) {
+        Mat R, t;
+        api.pose(E, p1, p2, K, R, t, k);
+    });
+
+    // The caller's buffers, filled with 7.
+    const std::pair<const char*, std::function<Mat(std::vector<uchar>&)>> buffers[] = {
+        {"Nx1 over the caller's data",
+         [n](std::vector<uchar>& data) { return Mat(n, 1, CV_8U, data.data()); }},
+        {"1xN over the caller's data",
+         [n](std::vector<uchar>& data) { return Mat(1, n, CV_8U, data.data()); }},
+        {"row of a larger matrix",
+         [n](std::vector<uchar>& data) { return Mat(3, n, CV_8U, data.data()).row(1); }},
+        {"column of a larger matrix",
+         [n](std::vector<uchar>& data) { return Mat(n, 3, CV_8U, data.data()).col(1); }},
+    };
+    int inPlace = 0;
+    for (const Case& form : forms)
+        for (const auto& buffer : buffers) {
+            SCOPED_TRACE(form.name + ", " + buffer.first);
+            const auto use = [&](const std::function<Mat(Mat&)>& call, Outcome& outcome) {
+                std::vector<uchar> data(static_cast<size_t>(3 * n), 7);
+                Mat mask = buffer.second(data);
+                const uchar* before = mask.data;
+                const Mat view = mask; // the caller's buffer, whatever becomes of `mask`
+                outcome = runCall([&](Mat&) { return call(mask); }).outcome;
+                BufferUse u;
+                u.size = mask.size();
+                u.inPlace = mask.data == before;
+                u.written = countNonZero(view == 7) == 0 && countNonZero(view > 1) == 0;
+                return u;
+            };
+            Outcome cvOutcome, rcOutcome;
+            const BufferUse cv = use(form.opencv, cvOutcome), rc = use(form.rcme, rcOutcome);
+            EXPECT_EQ(outcomeName(rcOutcome), "accept");
+            if (rc.inPlace)
+                EXPECT_TRUE(rc.written); // rcme's mask is 0 or 1
+            if (cvOutcome == Outcome::Reject) {
+                // A deliberate difference: OpenCV's RANSAC, LMedS and recoverPose assert that the
+                // buffer is continuous; rcme writes into a column of a larger matrix too.
+                EXPECT_EQ(std::string(buffer.first), "column of a larger matrix");
+                EXPECT_TRUE(rc.inPlace);
+                continue;
+            }
+            EXPECT_EQ(rc.inPlace, cv.inPlace);
+            EXPECT_EQ(rc.size, cv.size);
+            inPlace += rc.inPlace;
+        }
+    std::cout << inPlace << " of " << forms.size() * 4 << " calls wrote into the caller's buffer\n";
+    EXPECT_GT(inPlace, static_cast<int>(forms.size()));
+}
+
+} // namespace
+} // namespace opencv_test
