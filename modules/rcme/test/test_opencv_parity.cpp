@@ -939,3 +939,111 @@ TEST(Rcme_OpenCVParity, the_mask_goes_into_the_callers_buffer_where_opencv_write
 
 } // namespace
 } // namespace opencv_test
+
+namespace opencv_test {
+namespace {
+
+// The distances by which OpenCV 4.6's estimators mark a model's inliers (squared).
+enum class InlierDistance
+{
+    LargerLineDistance, //!< findFundamentalMat's RANSAC: the larger point-to-epipolar-line one
+    Sampson,            //!< USAC's F; findEssentialMat's RANSAC on normalized points
+    SymmetricLines      //!< USAC's E on normalized points: the sum of both point-line ones
+};
+
+double squaredInlierDistance(InlierDistance kind, const Matx33d& F, const Vec3d& x1,
+                             const Vec3d& x2)
+{
+    const Vec3d l2 = F * x1, l1 = F.t() * x2;
+    const double r = x2.dot(l2), a = l2[0] * l2[0] + l2[1] * l2[1],
+                 b = l1[0] * l1[0] + l1[1] * l1[1];
+    switch (kind) {
+    case InlierDistance::LargerLineDistance:
+        return std::max(r * r / a, r * r / b);
+    case InlierDistance::SymmetricLines:
+        return r * r / a + r * r / b;
+    case InlierDistance::Sampson:
+        break;
+    }
+    return r * r / (a + b);
+}
+
+// The mask (0 or 255) of the points within `threshold` px of `model` by `kind`: E on points
+// normalized by K against threshold / f, as OpenCV's; F on pixels.
+Mat maskByDistance(InlierDistance kind, const Mat& model, const Mat& p1, const Mat& p2,
+                   const Mat& K, double threshold)
+{
+    const Matx33d M(model.ptr<double>());
+    Mat mask(p1.rows, 1, CV_8U, Scalar(0));
+    const double f = K.empty() ? 1.0 : (K.at<double>(0, 0) + K.at<double>(1, 1)) / 2;
+    for (int i = 0; i < p1.rows; ++i) {
+        Vec3d x1(p1.at<double>(i, 0), p1.at<double>(i, 1), 1);
+        Vec3d x2(p2.at<double>(i, 0), p2.at<double>(i, 1), 1);
+        if (!K.empty()) {
+            const Matx33d Kinv = Matx33d(K.ptr<double>()).inv();
+            x1 = Kinv * x1;
+            x2 = Kinv * x2;
+        }
+        const double t = threshold / f;
+        mask.at<uchar>(i) = squaredInlierDistance(kind, M, x1, x2) <= t * t ? 255 : 0;
+    }
+    return mask;
+}
+
+/* Issue 34, item 7: the drop-in's mask marks the points within the threshold of its model by the
+distance of the OpenCV estimator the form stands for, and OpenCV's own mask is that distance on
+OpenCV's model (which this test checks, so that the distances are OpenCV's). On a forward motion
+(epipole in the image, where the distances part) with half outliers. */
+TEST(Rcme_OpenCVParity, the_mask_marks_inliers_by_opencvs_distance)
+{
+    SceneParams sp = testSceneParams(SCENE_GENERIC, 8, 0.5, 0.5, 300);
+    sp.forwardMotion = true;
+    const SyntheticScene s = generateScene(sp);
+    const Mat p1 = s.points1, p2 = s.points2, K = s.cameraMatrix;
+    const double threshold = 1.0;
+    struct Form
+    {
+        const char* name;
+        InlierDistance distance;
+        bool calibrated;
+        int method;
+    };
+    const Form forms[] = {
+        {"F FM_RANSAC", InlierDistance::LargerLineDistance, false, FM_RANSAC},
+        {"F USAC_DEFAULT", InlierDistance::Sampson, false, USAC_DEFAULT},
+        {"E RANSAC", InlierDistance::Sampson, true, RANSAC},
+        {"E USAC_DEFAULT", InlierDistance::SymmetricLines, true, USAC_DEFAULT},
+    };
+    for (const Form& form : forms) {
+        SCOPED_TRACE(form.name);
+        Mat cvMask, rcMask, cvModel, rcModel;
+        if (form.calibrated) {
+            cvModel = cv::findEssentialMat(p1, p2, K, form.method, 0.999, threshold, cvMask);
+            rcModel = cv::rcme::findEssentialMat(p1, p2, K, form.method, 0.999, threshold, rcMask);
+        } else {
+            cvModel = cv::findFundamentalMat(p1, p2, form.method, threshold, 0.99, cvMask);
+            rcModel = cv::rcme::findFundamentalMat(p1, p2, form.method, threshold, 0.99, rcMask);
+        }
+        ASSERT_FALSE(cvModel.empty());
+        ASSERT_FALSE(rcModel.empty());
+        const Mat k = form.calibrated ? K : Mat();
+        // OpenCV decides on float residuals: a point on the boundary may go either way.
+        EXPECT_LE(countNonZero(maskByDistance(form.distance, cvModel, p1, p2, k, threshold) !=
+                               (cvMask != 0)),
+                  1);
+        EXPECT_EQ(countNonZero(maskByDistance(form.distance, rcModel, p1, p2, k, threshold) !=
+                               (rcMask != 0)),
+                  0);
+    }
+    // How much the distance matters: the true E's inliers by Sampson's distance (rcme's, in
+    // pixels) and by USAC's symmetric one, at 1 px, differ on these points (README, "Drop-in").
+    const Mat bySampson = maskByDistance(InlierDistance::Sampson, s.E, p1, p2, K, threshold);
+    const Mat bySymmetric =
+        maskByDistance(InlierDistance::SymmetricLines, s.E, p1, p2, K, threshold);
+    std::cout << "true E, 1 px: " << countNonZero(bySampson) << " inliers by Sampson's distance, "
+              << countNonZero(bySymmetric) << " by the symmetric epipolar distance, "
+              << countNonZero(bySampson != bySymmetric) << " points differ\n";
+}
+
+} // namespace
+} // namespace opencv_test
