@@ -415,6 +415,32 @@ void searchHypotheses(const TwoViewData& data, EstimatorComponents& components,
     HypothesisSearch(data, components).run(candidates, result);
 }
 
+namespace {
+
+/* The candidate as the estimate: its inliers, refinement and settling in the model space (an E
+becomes a motion by cheirality on all its inliers). False, with the failure written into
+`result`, when its motion fails cheirality or, settled, the acceptance tests. */
+bool settleCandidate(const TwoViewData& data, EstimatorComponents& c,
+                     const CandidateSet::Candidate& candidate, RansacResult& result)
+{
+    result.model = candidate.model;
+    result.score = candidate.score;
+    c.scorer->classify(data, result.model, result.mask);
+    refineSelected(data, c, result);
+    if (!c.space->settleSelected(data, c, result))
+        return false;
+    if (!result.score.isCandidate) {
+        rejectModel(result, STATUS_POOR_QUALITY_INPUT,
+                    "the motion closest to the selected hypothesis fails the acceptance tests",
+                    result.model);
+        return false;
+    }
+    result.status = STATUS_SUCCESS;
+    return true;
+}
+
+} // namespace
+
 RansacResult runRansac(const TwoViewData& data, EstimatorComponents& c)
 {
     RansacResult result;
@@ -448,20 +474,28 @@ RansacResult runRansac(const TwoViewData& data, EstimatorComponents& c)
         }
         return result;
     }
-    result.model = best->model;
-    result.score = best->score;
-
-    c.scorer->classify(data, result.model, result.mask);
-    refineSelected(data, c, result);
-    if (!c.space->settleSelected(data, c, result))
+    if (settleCandidate(data, c, *best, result))
         return result;
-    if (!result.score.isCandidate) {
-        rejectModel(result, STATUS_POOR_QUALITY_INPUT,
-                    "the motion closest to the selected hypothesis fails the acceptance tests",
-                    result.model);
-        return result;
+    // The selection weighed the hypotheses' bands alone; cheirality came after. A wrong E can
+    // hold as many points in its band as the right one (a few points, a narrow view) or one more
+    // (a gross outlier far off the image, whose Sampson distance to a wrong E is small), and its
+    // motion then fails. The distinct motions the loop saw, each with its own cheirality, are
+    // settled in turn, best first; the first that passes is the estimate.
+    std::vector<const RivalMotions::Rival*> rivals;
+    for (const RivalMotions::Rival& rival : result.rivals)
+        if (rival.score.isCandidate && areDistinctMotions(rival.model, best->model))
+            rivals.push_back(&rival);
+    std::stable_sort(rivals.begin(), rivals.end(),
+                     [](const auto* a, const auto* b) { return a->score.value < b->score.value; });
+    for (const RivalMotions::Rival* rival : rivals) {
+        RansacResult attempt = result;
+        if (settleCandidate(data, c, CandidateSet::Candidate{rival->model, rival->score},
+                            attempt)) {
+            attempt.message.clear();
+            attempt.hasRejected = false;
+            return attempt;
+        }
     }
-    result.status = STATUS_SUCCESS;
     return result;
 }
 
