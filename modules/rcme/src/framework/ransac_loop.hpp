@@ -58,8 +58,9 @@ void rejectModel(RansacResult& result, Status status, const std::string& message
 
 /** The RANSAC loop shared by every method: sample, instantiate, verify, score, keep the best
 candidate, adapt the iteration bound; then refine the selected model, classify the points and
-settle the estimate in its model space (ModelSpace::settleSelected). No hypothesis that is not a
-candidate is ever returned: with none, the status says why. */
+settle the estimate in its model space (ModelSpace::settleSelected), or when its motion fails
+there, the first of the loop's distinct motions (result.rivals, best first) that settles. No
+hypothesis that is not a candidate is ever returned: with none, the status says why. */
 RansacResult runRansac(const TwoViewData& data, EstimatorComponents& components);
 
 /** One whole estimation, the paper's Fig. 1 and what follows it: runRansac, the degeneracy test
