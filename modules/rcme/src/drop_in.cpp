@@ -9,6 +9,8 @@
 
 #include "precomp.hpp"
 
+#include "drop_in/agreeing_points.hpp"
+#include "drop_in/opencv_inlier_mask.hpp"
 #include "framework/two_view_data.hpp"
 #include "geometry/epipolar.hpp"
 
@@ -30,10 +32,35 @@ constexpr int kDefaultMaxIters = 1000; // the forms without maxIters
 // The inlier threshold is 1.96 sigma (Params::threshold), so a drop-in threshold implies sigma.
 constexpr double kThresholdPerSigma = 1.959963984540054;
 
-// OpenCV's method flags, mapped to the rcme method of the same intent (doc/dropin.md).
+bool isRcmeMethod(int method)
+{
+    return method >= METHOD_RCME && method <= METHOD_COV_RANSAC;
+}
+
+// USAC_DEFAULT .. USAC_MAGSAC: the flags OpenCV hands to its USAC framework.
+bool isUsacFlag(int method)
+{
+    return method >= USAC_DEFAULT && method <= USAC_MAGSAC;
+}
+
+/* OpenCV's classic flags and their combinations: calib3d decodes any value outside USAC_* by its
+bits (findFundamentalMat: exactly FM_8POINT is the direct 8-point solution, `(method & ~3) ==
+FM_RANSAC` RANSAC, the rest LMedS; findEssentialMat: exactly RANSAC is RANSAC, the rest LMedS),
+so FM_RANSAC | FM_8POINT (10) runs RANSAC and FM_LMEDS | FM_8POINT (6) LMedS there. Every
+combination of the four FM_* bits and RHO are accepted here; other values (99, negative) are
+rejected, naming `method`, where OpenCV would silently run LMedS. */
+bool isClassicFlag(int method)
+{
+    return (method >= 0 && method <= (FM_7POINT | FM_8POINT | FM_LMEDS | FM_RANSAC)) ||
+           method == RHO;
+}
+
+// OpenCV's method flags, mapped to the rcme method of the same intent (doc/dropin.md). Every
+// robust flag (RANSAC, LMedS and their combinations, RHO) is METHOD_STANDARD; exactly FM_7POINT or
+// FM_8POINT pick that solver.
 void applyMethodFlag(int method, Params& p)
 {
-    if (method >= METHOD_RCME && method <= METHOD_COV_RANSAC) {
+    if (isRcmeMethod(method)) {
         p.method = static_cast<Method>(method);
         return;
     }
@@ -46,9 +73,6 @@ void applyMethodFlag(int method, Params& p)
     case USAC_FM_8PTS:
         p.solver = SOLVER_EIGHT_POINT;
         return;
-    case FM_LMEDS:  // == LMEDS
-    case FM_RANSAC: // == RANSAC
-    case RHO:
     case USAC_DEFAULT:
     case USAC_FAST:
         return;
@@ -67,9 +91,11 @@ void applyMethodFlag(int method, Params& p)
     default:
         break;
     }
+    if (isClassicFlag(method))
+        return;
     CV_Error(Error::StsBadArg,
-             cv::format("method: %d is neither an OpenCV method flag (FM_*, LMEDS, RANSAC, RHO, "
-                        "USAC_*) nor a cv::rcme::Method value",
+             cv::format("method: %d is neither an OpenCV method flag (FM_* and their "
+                        "combinations, LMEDS, RANSAC, RHO, USAC_*) nor a cv::rcme::Method value",
                         method));
 }
 
@@ -99,14 +125,13 @@ Params fundamentalParams(int method, double threshold, double confidence, int ma
     return p;
 }
 
-// OpenCV estimates E with the 5-point solver (RANSAC, LMedS and USAC alike), and so does rcme's
-// drop-in, unless the flag names another solver or the method is rcme's own (its defaults
-// apply). On KITTI 06 with ORB matches the 8-point E of METHOD_STANDARD was 5 to 7 degrees off on
-// two of four pairs where the 5-point one was within 1 degree (doc/results.md).
+// OpenCV estimates E with the 5-point solver (RANSAC, LMedS, every classic flag, USAC alike), and
+// so does rcme's drop-in, unless the flag is USAC_FM_8PTS or the method is rcme's own (its
+// defaults apply). On KITTI 06 with ORB matches the 8-point E of METHOD_STANDARD was 5 to 7
+// degrees off on two of four pairs where the 5-point one was within 1 degree (doc/results.md).
 void useFivePointSolverForEssential(int method, Params& p)
 {
-    const bool rcmeMethod = method >= METHOD_RCME && method <= METHOD_COV_RANSAC;
-    if (!rcmeMethod && method != FM_7POINT && method != FM_8POINT && method != USAC_FM_8PTS)
+    if (!isRcmeMethod(method) && method != USAC_FM_8PTS)
         p.solver = SOLVER_FIVE_POINT;
 }
 
@@ -151,6 +176,129 @@ Mat euclideanPoints(InputArray points)
     return m;
 }
 
+/* The points as OpenCV's USAC reads them (the USAC_* flags and the UsacParams forms): one point
+per row or per column, whichever side is longer, with its coordinates in the channels or along
+the shorter side, so a 2xN single-channel matrix too; homogeneous points as above. What is left
+malformed (a single point, one coordinate) readPoints rejects, naming the argument. */
+Mat usacLayoutPoints(InputArray points)
+{
+    Mat m = points.getMat();
+    if (m.empty() || m.dims > 2)
+        return m;
+    if (m.channels() > 1)
+        m = (m.isContinuous() ? m : m.clone()).reshape(1, static_cast<int>(m.total()));
+    if (m.rows < m.cols)
+        m = m.t();
+    if (m.cols == 3)
+        return euclideanPoints(m);
+    return m.cols > 3 ? m.colRange(0, 2) : m;
+}
+
+/* The points of the two-camera forms, which OpenCV passes to cv::undistortPoints first: CV_32F or
+CV_64F, continuous, Nx2 or 2xN with one channel, Nx1 or 1xN with two. */
+Mat undistortLayoutPoints(InputArray points, const char* name)
+{
+    Mat m = points.getMat();
+    if (m.empty())
+        return m;
+    if (m.depth() != CV_32F && m.depth() != CV_64F)
+        CV_Error(Error::StsBadArg,
+                 cv::format("%s must be CV_32F or CV_64F in the two-camera forms (they undistort "
+                            "with cv::undistortPoints, as OpenCV's), got depth %d",
+                            name, m.depth()));
+    if (m.checkVector(2) < 0 && m.dims == 2)
+        m = m.t();
+    if (m.checkVector(2) < 0)
+        CV_Error(Error::StsBadArg, cv::format("%s must be a continuous Nx2 or 2xN (1 channel), "
+                                              "Nx1 or 1xN (2 channels) array",
+                                              name));
+    return m;
+}
+
+// OpenCV's findEssentialMat and recoverPose require both point sets of one type once converted
+// to CV_64F: the same number of channels.
+void requireSameLayout(InputArray points1, InputArray points2)
+{
+    if (!points1.empty() && !points2.empty() && points1.channels() != points2.channels())
+        CV_Error(Error::StsUnmatchedSizes,
+                 cv::format("points1 and points2 must have the same layout (%d vs %d channels)",
+                            points1.channels(), points2.channels()));
+}
+
+/* OpenCV's mask output, written into the caller's buffer where OpenCV writes it: calib3d's RANSAC
+and LMedS (`allowTransposed`) keep a continuous 1xN or an Nx1 CV_8U array, USAC and recoverPose
+an Nx1 one; anything else is replaced by a new Nx1 CV_8U array. */
+void writeOpenCVMask(const Mat& values, OutputArray mask, bool allowTransposed)
+{
+    if (!mask.needed())
+        return;
+    const int n = static_cast<int>(values.total());
+    mask.create(n, 1, CV_8U, -1, allowTransposed);
+    Mat out = mask.getMat();
+    const Mat column = values.reshape(1, n);
+    (out.rows == n ? column : column.reshape(1, 1)).copyTo(out);
+}
+
+// OpenCV's scale of F: F(2,2) = 1 where it is not (nearly) zero; rcme's F has unit norm. Each
+// 3x3 block of a stack of solutions is scaled so.
+Mat fundamentalInOpenCVScale(const Mat& F)
+{
+    Mat scaled = F.clone();
+    for (int r = 0; r + 3 <= scaled.rows; r += 3) {
+        Mat block = scaled.rowRange(r, r + 3);
+        if (std::abs(block.at<double>(2, 2)) > FLT_EPSILON)
+            block /= block.at<double>(2, 2);
+    }
+    return scaled;
+}
+
+// OpenCV's scale of E: unit Frobenius norm (singular values 1/sqrt(2), 1/sqrt(2), 0), per block.
+Mat essentialInOpenCVScale(const Mat& E)
+{
+    Mat scaled = E.clone();
+    for (int r = 0; r + 3 <= scaled.rows; r += 3) {
+        Mat block = scaled.rowRange(r, r + 3);
+        block /= norm(block);
+    }
+    return scaled;
+}
+
+/* The model of few points that all agree with it (drop_in/agreeing_points.hpp), where the
+estimate refused for want of evidence (no support beyond chance, not enough points for its solver,
+an undetermined motion); a degenerate configuration or a pure rotation is evidence and stays
+refused. */
+void answerAgreeingPoints(const detail::TwoViewData& data, Status status, bool stackSolutions,
+                          Mat& model)
+{
+    if (model.empty() && data.size() < detail::kDropInFewPoints &&
+        (status == STATUS_POOR_QUALITY_INPUT || status == STATUS_NOT_ENOUGH_POINTS ||
+         status == STATUS_UNDETERMINED_MOTION))
+        model = detail::modelOfAgreeingPoints(data, stackSolutions);
+}
+
+/* The drop-in's answer in OpenCV's terms: the model, found by the estimate or agreed by few points,
+and the mask of the points within the threshold of it by the distance of the OpenCV estimator the
+form stands for (drop_in/opencv_inlier_mask.hpp), or zeros without a model. `classic`: a form
+OpenCV runs outside USAC (its RANSAC and LMedS: stacked minimal solutions, a 1xN mask buffer
+kept). */
+Mat answerAsOpenCV(InputArray points1, InputArray points2, InputArray cameraMatrix,
+                   const Params& params, bool classic, OutputArray mask)
+{
+    const Report report = estimateRelativeMotion(points1, points2, cameraMatrix, params);
+    const detail::TwoViewData data =
+        detail::makeTwoViewData(points1, points2, cameraMatrix, params);
+    Mat model = data.calibrated ? report.E : report.F;
+    answerAgreeingPoints(data, report.status, classic, model);
+    using Distance = detail::OpenCVInlierDistance;
+    const Distance distance =
+        data.calibrated ? (classic ? Distance::Sampson : Distance::SymmetricEpipolarDistance)
+                        : (classic ? Distance::LargerEpipolarLineDistance : Distance::Sampson);
+    writeOpenCVMask(model.empty() ? Mat(data.size(), 1, CV_8U, Scalar(0))
+                                  : detail::opencvInlierMask(data, model, distance),
+                    mask, classic);
+    return data.calibrated ? essentialInOpenCVScale(model) : fundamentalInOpenCVScale(model);
+}
+
 Mat cameraMatrixFromFocal(double focal, Point2d pp)
 {
     Mat K;
@@ -160,11 +308,14 @@ Mat cameraMatrixFromFocal(double focal, Point2d pp)
 
 /* The two-camera forms, as OpenCV computes them: both views undistorted, then mapped back to
 pixels by the mean of the two camera matrices, which becomes the camera matrix of the estimate;
-so the threshold keeps its meaning in pixels. Returns that mean matrix. */
+so the threshold keeps its meaning in pixels. Returns that mean matrix. The points' layouts are
+those of cv::undistortPoints, or with `usacLayout` and no distortion USAC's, as OpenCV reads them.
+*/
 Mat undistortToMeanCamera(InputArray points1, InputArray points2, InputArray cameraMatrix1,
                           InputArray distCoeffs1, InputArray cameraMatrix2, InputArray distCoeffs2,
-                          Mat& undistorted1, Mat& undistorted2)
+                          bool usacLayout, Mat& undistorted1, Mat& undistorted2)
 {
+    const bool usacReading = usacLayout && distCoeffs1.empty() && distCoeffs2.empty();
     Eigen::Matrix3d K1, K2;
     if (!detail::readCameraMatrix(cameraMatrix1, "cameraMatrix1", K1))
         CV_Error(Error::StsBadArg, "cameraMatrix1 is required");
@@ -177,7 +328,9 @@ Mat undistortToMeanCamera(InputArray points1, InputArray points2, InputArray cam
     const auto undistort = [&](InputArray points, const char* name, const Mat& K,
                                InputArray distortion, Mat& out) {
         std::vector<Point2d> xy;
-        for (const Eigen::Vector2d& x : detail::readPoints(points, name))
+        const Mat laidOut =
+            usacReading ? usacLayoutPoints(points) : undistortLayoutPoints(points, name);
+        for (const Eigen::Vector2d& x : detail::readPoints(laidOut, name))
             xy.emplace_back(x.x(), x.y());
         undistortPoints(xy, out, K, distortion, noArray(), K0);
     };
@@ -202,19 +355,22 @@ void writeStandingCamera(OutputArray R, OutputArray t)
     Mat(Mat::zeros(3, 1, CV_64F)).copyTo(t);
 }
 
-// findEssentialMat's answer in OpenCV's terms: E, or an empty E with a zero mask. (The status form
-// keeps a pure rotation's inliers beside its empty E; here no E means no inliers.)
-Mat essentialOrNothing(InputArray points1, InputArray points2, InputArray cameraMatrix,
-                       const Params& params, OutputArray mask)
+// findFundamentalMat's answer in OpenCV's terms: F in its scale, or an empty F with a zero mask.
+Mat fundamentalDropIn(const Mat& points1, const Mat& points2, const Params& params, bool classic,
+                      OutputArray mask)
 {
-    Status status;
-    Mat inliers;
-    Mat E = rcme::findEssentialMat(points1, points2, cameraMatrix, params, inliers, status);
-    if (E.empty())
-        inliers.setTo(0);
-    if (mask.needed())
-        inliers.copyTo(mask);
-    return E;
+    return answerAsOpenCV(points1, points2, noArray(), params, classic, mask);
+}
+
+// findEssentialMat's answer in OpenCV's terms: E in its scale, or an empty E with a zero mask.
+// (The status form keeps a pure rotation's inliers beside its empty E; here no E means no
+// inliers.)
+Mat essentialDropIn(InputArray points1, InputArray points2, InputArray cameraMatrix,
+                    const Params& params, bool classic, OutputArray mask)
+{
+    if (cameraMatrix.empty())
+        CV_Error(Error::StsBadArg, "cameraMatrix is required (use findFundamentalMat without it)");
+    return answerAsOpenCV(points1, points2, cameraMatrix, params, classic, mask);
 }
 
 // The selection recoverPose's mask argument makes on input: all points when it is empty.
@@ -238,6 +394,7 @@ int poseFromEssential(InputArray E, InputArray points1, InputArray points2, Inpu
                       OutputArray R, OutputArray t, double distanceThresh, InputOutputArray mask,
                       OutputArray triangulatedPoints)
 {
+    requireSameLayout(points1, points2);
     const std::vector<Eigen::Vector2d> p1 = detail::readPoints(points1, "points1");
     const std::vector<Eigen::Vector2d> p2 = detail::readPoints(points2, "points2");
     if (p1.size() != p2.size())
@@ -309,10 +466,12 @@ Mat findFundamentalMat(InputArray points1, InputArray points2, int method,
                        double ransacReprojThreshold, double confidence, int maxIters,
                        OutputArray mask)
 {
-    Status status;
-    return rcme::findFundamentalMat(
-        euclideanPoints(points1), euclideanPoints(points2),
-        fundamentalParams(method, ransacReprojThreshold, confidence, maxIters), mask, status);
+    const Params params = fundamentalParams(method, ransacReprojThreshold, confidence, maxIters);
+    const bool usac = isUsacFlag(method);
+    const auto read = [usac](InputArray points) {
+        return usac ? usacLayoutPoints(points) : euclideanPoints(points);
+    };
+    return fundamentalDropIn(read(points1), read(points2), params, !usac, mask);
 }
 
 Mat findFundamentalMat(InputArray points1, InputArray points2, int method,
@@ -332,16 +491,21 @@ Mat findFundamentalMat(InputArray points1, InputArray points2, OutputArray mask,
 Mat findFundamentalMat(InputArray points1, InputArray points2, OutputArray mask,
                        const UsacParams& params)
 {
-    Status status;
-    return rcme::findFundamentalMat(euclideanPoints(points1), euclideanPoints(points2),
-                                    usacParams(params), mask, status);
+    return fundamentalDropIn(usacLayoutPoints(points1), usacLayoutPoints(points2),
+                             usacParams(params), false, mask);
 }
 
 Mat findEssentialMat(InputArray points1, InputArray points2, InputArray cameraMatrix, int method,
                      double prob, double threshold, int maxIters, OutputArray mask)
 {
-    return essentialOrNothing(points1, points2, cameraMatrix,
-                              essentialParams(method, prob, threshold, maxIters), mask);
+    // OpenCV's findEssentialMat hands USAC 1000 iterations, whatever maxIters says.
+    const Params params =
+        essentialParams(method, prob, threshold, isUsacFlag(method) ? kDefaultMaxIters : maxIters);
+    if (isUsacFlag(method))
+        return essentialDropIn(usacLayoutPoints(points1), usacLayoutPoints(points2), cameraMatrix,
+                               params, false, mask);
+    requireSameLayout(points1, points2);
+    return essentialDropIn(points1, points2, cameraMatrix, params, true, mask);
 }
 
 Mat findEssentialMat(InputArray points1, InputArray points2, InputArray cameraMatrix, int method,
@@ -365,24 +529,15 @@ Mat findEssentialMat(InputArray points1, InputArray points2, double focal, Point
                                   threshold, kDefaultMaxIters, mask);
 }
 
-// E of two cameras: the points undistorted onto their mean camera, as OpenCV does.
-static Mat essentialOfTwoCameras(InputArray points1, InputArray points2, InputArray cameraMatrix1,
-                                 InputArray distCoeffs1, InputArray cameraMatrix2,
-                                 InputArray distCoeffs2, const Params& params, OutputArray mask)
-{
-    Mat u1, u2;
-    const Mat K0 = undistortToMeanCamera(points1, points2, cameraMatrix1, distCoeffs1,
-                                         cameraMatrix2, distCoeffs2, u1, u2);
-    return essentialOrNothing(u1, u2, K0, params, mask);
-}
-
 Mat findEssentialMat(InputArray points1, InputArray points2, InputArray cameraMatrix1,
                      InputArray distCoeffs1, InputArray cameraMatrix2, InputArray distCoeffs2,
                      int method, double prob, double threshold, OutputArray mask)
 {
-    return essentialOfTwoCameras(points1, points2, cameraMatrix1, distCoeffs1, cameraMatrix2,
-                                 distCoeffs2,
-                                 essentialParams(method, prob, threshold, kDefaultMaxIters), mask);
+    const Params params = essentialParams(method, prob, threshold, kDefaultMaxIters);
+    Mat u1, u2;
+    const Mat K0 = undistortToMeanCamera(points1, points2, cameraMatrix1, distCoeffs1,
+                                         cameraMatrix2, distCoeffs2, false, u1, u2);
+    return essentialDropIn(u1, u2, K0, params, !isUsacFlag(method), mask);
 }
 
 Mat findEssentialMat(InputArray points1, InputArray points2, InputArray cameraMatrix1,
@@ -391,8 +546,10 @@ Mat findEssentialMat(InputArray points1, InputArray points2, InputArray cameraMa
 {
     Params p = usacParams(params);
     p.solver = SOLVER_FIVE_POINT;
-    return essentialOfTwoCameras(points1, points2, cameraMatrix1, dist_coeff1, cameraMatrix2,
-                                 dist_coeff2, p, mask);
+    Mat u1, u2;
+    const Mat K0 = undistortToMeanCamera(points1, points2, cameraMatrix1, dist_coeff1,
+                                         cameraMatrix2, dist_coeff2, true, u1, u2);
+    return essentialDropIn(u1, u2, K0, p, false, mask);
 }
 
 int recoverPose(InputArray points1, InputArray points2, InputArray cameraMatrix1,
@@ -403,16 +560,21 @@ int recoverPose(InputArray points1, InputArray points2, InputArray cameraMatrix1
     const Params params = essentialParams(method, prob, threshold, kDefaultMaxIters);
     Mat u1, u2;
     const Mat K0 = undistortToMeanCamera(points1, points2, cameraMatrix1, distCoeffs1,
-                                         cameraMatrix2, distCoeffs2, u1, u2);
+                                         cameraMatrix2, distCoeffs2, false, u1, u2);
     Status status;
-    Mat inliers;
-    const int count = rcme::recoverPose(u1, u2, K0, E, R, t, params, inliers, status);
+    Mat inliers, essential;
+    const int count = rcme::recoverPose(u1, u2, K0, essential, R, t, params, inliers, status);
+    if (E.needed()) {
+        if (essential.empty())
+            E.release();
+        else
+            essentialInOpenCVScale(essential).copyTo(E);
+    }
     // A pure rotation keeps its R (t = 0) and inliers: the right motion of a camera that turns
     // on the spot, which OpenCV code can use as it is.
     if (status != STATUS_SUCCESS && status != STATUS_PURE_ROTATION)
         writeStandingCamera(R, t);
-    if (mask.needed())
-        inliers.copyTo(mask);
+    writeOpenCVMask(inliers, mask, false);
     return count;
 }
 

@@ -4,14 +4,16 @@
 // Argument parity with OpenCV 4.6 by differential test: every OpenCV form of findFundamentalMat,
 // findEssentialMat and recoverPose is called with the same valid and invalid arguments through
 // cv:: and cv::rcme::. Both must accept or both must reject (with a cv::Exception), and on
-// accepted input rcme's mask must have OpenCV's shape and type, except for the deliberate
-// differences listed in kDeliberate (doc/dropin.md says why).
+// accepted input rcme's mask must have OpenCV's shape and type, and its F or E (where a case
+// returns it) OpenCV's shape, type and scale, except for the deliberate differences listed in
+// kDeliberate (doc/dropin.md says why).
 
 #include "test_precomp.hpp"
 
 #include <algorithm>
 #include <functional>
 #include <iostream>
+#include <type_traits>
 #include <utility>
 
 namespace opencv_test {
@@ -67,20 +69,21 @@ struct CallResult
 {
     Outcome outcome = Outcome::Accept;
     cv::Mat mask;
+    cv::Mat model; //!< what a case that returns its F or E returned
     std::string what;
 };
 
 struct Case
 {
     std::string name;
-    std::function<void(cv::Mat&)> opencv, rcme;
+    std::function<cv::Mat(cv::Mat&)> opencv, rcme;
 };
 
 template <class Call> CallResult runCall(const Call& call)
 {
     CallResult r;
     try {
-        call(r.mask);
+        r.model = call(r.mask);
     } catch (const cv::Exception& e) {
         r.outcome = Outcome::Reject;
         r.what = e.what();
@@ -104,6 +107,14 @@ const Deliberate kDeliberate[] = {
      "OpenCV runs LMedS for any unknown method value; rcme rejects it, naming `method`"},
     {"E method 99", Outcome::Accept, Outcome::Reject,
      "OpenCV runs LMedS for any unknown method value; rcme rejects it, naming `method`"},
+    {"F method -1", Outcome::Accept, Outcome::Reject,
+     "a value that no combination of OpenCV's flags makes: rcme rejects it, naming `method`"},
+    {"F method 17", Outcome::Accept, Outcome::Reject,
+     "a value that no combination of OpenCV's flags makes: rcme rejects it, naming `method`"},
+    {"E method -1", Outcome::Accept, Outcome::Reject,
+     "a value that no combination of OpenCV's flags makes: rcme rejects it, naming `method`"},
+    {"E method 17", Outcome::Accept, Outcome::Reject,
+     "a value that no combination of OpenCV's flags makes: rcme rejects it, naming `method`"},
     {"F nan point", Outcome::Accept, Outcome::Reject,
      "OpenCV estimates from non-finite coordinates; rcme rejects them, naming the point"},
     {"E nan point", Outcome::Accept, Outcome::Reject,
@@ -133,21 +144,51 @@ const Deliberate* deliberate(const std::string& caseName)
     return nullptr;
 }
 
-// Cases where both accept but OpenCV's mask has another layout: rcme's is always Nx1 CV_8U, of
-// zeros on failure (OpenCV leaves it unwritten when it returns early, and FM_7POINT/FM_8POINT
-// give 1xN). Code reading mask.at<uchar>(i) for i < N works on both.
+// Cases where both accept but OpenCV's mask has another layout: rcme writes Nx1 CV_8U zeros where
+// OpenCV returns early without writing it (too few points, USAC maxIterations <= 0). Code reading
+// mask.at<uchar>(i) for i < N works on both.
 bool maskLayoutMayDiffer(const std::string& caseName)
 {
     return caseName.find("few") != std::string::npos ||
-           caseName.find("FM_7POINT") != std::string::npos ||
-           caseName.find("FM_8POINT") != std::string::npos ||
            caseName.find("usac maxIterations") != std::string::npos;
+}
+
+// A case's call through one namespace; a case whose lambda returns a cv::Mat (its F or E) has it
+// compared too.
+template <class Api, class F> cv::Mat callCase(const F& f, cv::Mat& mask)
+{
+    if constexpr (std::is_same_v<decltype(f(Api(), mask)), cv::Mat>) {
+        return f(Api(), mask);
+    } else {
+        f(Api(), mask);
+        return cv::Mat();
+    }
 }
 
 template <class F> Case makeCase(std::string caseName, F f)
 {
-    return {std::move(caseName), [f](cv::Mat& mask) { f(OpenCVApi(), mask); },
-            [f](cv::Mat& mask) { f(RcmeApi(), mask); }};
+    return {std::move(caseName), [f](cv::Mat& mask) { return callCase<OpenCVApi>(f, mask); },
+            [f](cv::Mat& mask) { return callCase<RcmeApi>(f, mask); }};
+}
+
+/* rcme's F or E has OpenCV's shape, type and scale (issue 34, item 6): F(2,2) = 1 and unit
+Frobenius norm per 3x3 block wherever OpenCV's has them; and it is found where OpenCV finds one
+(the cases that return their model run on clean data, where OpenCV's answer is right). */
+void expectOpenCVsAnswer(const Mat& opencvModel, const Mat& rcmeModel)
+{
+    ASSERT_EQ(rcmeModel.empty(), opencvModel.empty());
+    if (opencvModel.empty())
+        return;
+    ASSERT_EQ(rcmeModel.size(), opencvModel.size());
+    ASSERT_EQ(rcmeModel.type(), opencvModel.type());
+    ASSERT_EQ(rcmeModel.type(), CV_64F);
+    for (int r = 0; r + 3 <= opencvModel.rows; r += 3) {
+        const Mat a = opencvModel.rowRange(r, r + 3), b = rcmeModel.rowRange(r, r + 3);
+        if (std::abs(a.at<double>(2, 2) - 1) < 1e-9)
+            EXPECT_NEAR(b.at<double>(2, 2), 1.0, 1e-9) << r;
+        if (std::abs(cv::norm(a) - 1) < 1e-9)
+            EXPECT_NEAR(cv::norm(b), 1.0, 1e-9) << r;
+    }
 }
 
 std::vector<Case> parityCases()
@@ -192,7 +233,9 @@ std::vector<Case> parityCases()
                                                             {"USAC_ACCURATE", USAC_ACCURATE},
                                                             {"USAC_PROSAC", USAC_PROSAC},
                                                             {"USAC_MAGSAC", USAC_MAGSAC},
-                                                            {"99", 99}};
+                                                            {"99", 99},
+                                                            {"-1", -1},
+                                                            {"17", 17}};
     for (const auto& flag : fundamentalFlags) {
         const int m = flag.second;
         addCase(std::string("F method ") + flag.first,
@@ -276,7 +319,9 @@ std::vector<Case> parityCases()
                                                           {"USAC_ACCURATE", USAC_ACCURATE},
                                                           {"USAC_PROSAC", USAC_PROSAC},
                                                           {"USAC_MAGSAC", USAC_MAGSAC},
-                                                          {"99", 99}};
+                                                          {"99", 99},
+                                                          {"-1", -1},
+                                                          {"17", 17}};
     for (const auto& flag : essentialFlags) {
         const int m = flag.second;
         addCase(std::string("E method ") + flag.first,
@@ -411,6 +456,68 @@ std::vector<Case> parityCases()
         Mat e, R, t;
         api.pose(p1, shorter, K, distortion, K, distortion, e, R, t, RANSAC, 0.999, 1.0, k);
     });
+
+    // --- issue 34, item 1: the same points in every layout through every form. OpenCV's USAC
+    // (flags and UsacParams) reads any layout, 2xN single-channel too; cv::undistortPoints (the
+    // two-camera forms) takes 2xN of CV_32F or CV_64F; the other forms reject 2xN.
+    const Mat homogeneousRows1 = homogeneous1.t(), homogeneousRows2 = homogeneous2.t();
+    const std::vector<std::pair<std::string, std::pair<Mat, Mat>>> layouts = {
+        {"Nx2", {p1, p2}},
+        {"2xN", {p1.t(), p2.t()}},
+        {"2xN float", {Mat_<float>(p1.t()), Mat_<float>(p2.t())}},
+        {"Nx1 2-channel", {p1.reshape(2), p2.reshape(2)}},
+        {"1xN 2-channel", {p1.reshape(2, 1), p2.reshape(2, 1)}},
+        {"3xN", {homogeneousRows1, homogeneousRows2}},
+    };
+    for (const auto& layout : layouts) {
+        const Mat a = layout.second.first, b = layout.second.second;
+        const std::string prefix = " layout " + layout.first + " ";
+        for (const auto& flag : fundamentalFlags) {
+            const int m = flag.second;
+            if (m != 99 && m != -1 && m != 17)
+                addCase("F" + prefix + flag.first, [=](auto api, Mat& k) {
+                    return api.fundamental(a, b, m, 3., 0.99, 1000, k);
+                });
+        }
+        addCase("F" + prefix + "UsacParams",
+                [=](auto api, Mat& k) { return api.fundamental(a, b, k, UsacParams()); });
+        for (const auto& flag : essentialFlags) {
+            const int m = flag.second;
+            if (m != 99 && m != -1 && m != 17)
+                addCase("E" + prefix + flag.first, [=](auto api, Mat& k) {
+                    return api.essential(a, b, K, m, 0.999, 1., 50, k);
+                });
+        }
+        for (const Mat& d : {distortion, Mat()}) {
+            const std::string how = d.empty() ? "no distortion" : "distortion";
+            addCase("E" + prefix + "two cameras " + how, [=](auto api, Mat& k) {
+                return api.essential(a, b, K, d, K, d, RANSAC, 0.999, 1., k);
+            });
+            addCase("E" + prefix + "UsacParams " + how, [=](auto api, Mat& k) {
+                return api.essential(a, b, K, K, d, d, k, UsacParams());
+            });
+            addCase("R" + prefix + "two cameras " + how, [=](auto api, Mat& k) {
+                Mat e, R, t;
+                api.pose(a, b, K, d, K, d, e, R, t, RANSAC, 0.999, 1.0, k);
+                return e;
+            });
+        }
+        addCase("R" + prefix + "from E", [=](auto api, Mat& k) {
+            Mat R, t;
+            api.pose(E, a, b, K, R, t, k);
+        });
+    }
+
+    // --- issue 34, item 2: every combination of OpenCV's classic flags, decoded by its bits as
+    // calib3d does (FM_RANSAC | FM_8POINT = 10 runs RANSAC, FM_LMEDS | FM_8POINT = 6 LMedS).
+    for (int m = 0; m <= RHO; ++m) {
+        if (m > (FM_7POINT | FM_8POINT | FM_LMEDS | FM_RANSAC) && m != RHO)
+            continue;
+        addCase("F method combination " + std::to_string(m),
+                [=](auto api, Mat& k) { return api.fundamental(p1, p2, m, 3., 0.99, 1000, k); });
+        addCase("E method combination " + std::to_string(m),
+                [=](auto api, Mat& k) { return api.essential(p1, p2, K, m, 0.999, 1., 50, k); });
+    }
     return cases;
 }
 
@@ -438,6 +545,7 @@ TEST(Rcme_OpenCVParity, both_accept_or_both_reject_and_masks_have_opencvs_layout
             << "OpenCV: " << cv.what << "\nrcme: " << rc.what;
         if (cv.outcome != Outcome::Accept || rc.outcome != Outcome::Accept)
             continue;
+        expectOpenCVsAnswer(cv.model, rc.model);
         if (!cv.mask.empty() && !maskLayoutMayDiffer(c.name)) {
             EXPECT_EQ(rc.mask.size(), cv.mask.size());
             EXPECT_EQ(rc.mask.type(), cv.mask.type());
@@ -562,6 +670,516 @@ TEST(Rcme_OpenCVParity, new_forms_agree_with_opencv_on_a_clean_pair)
         const Mat b = pointsCv.col(i) / pointsCv.at<double>(3, i);
         EXPECT_LT(cv::norm(a, b, NORM_INF), 1e-6) << i;
     }
+}
+
+} // namespace
+} // namespace opencv_test
+
+namespace opencv_test {
+namespace {
+
+// The angle between two unit-norm E or F up to sign, as the distance of their entries.
+double blockDistance(const Mat& a, const Mat& b)
+{
+    const Mat na = a / cv::norm(a), nb = b / cv::norm(b);
+    return std::min(cv::norm(na - nb), cv::norm(na + nb));
+}
+
+// Whether a block of `stacked` (3k x 3) equals `block` up to scale and sign.
+bool containsBlock(const Mat& stacked, const Mat& block, double tolerance)
+{
+    for (int r = 0; r + 3 <= stacked.rows; r += 3)
+        if (blockDistance(stacked.rowRange(r, r + 3), block) < tolerance)
+            return true;
+    return false;
+}
+
+// The rotation and translation errors (degrees) of the motion of E on the given points.
+std::pair<double, double> essentialError(const Mat& E, const SyntheticScene& s, const Mat& p1,
+                                         const Mat& p2)
+{
+    Mat R, t;
+    cv::recoverPose(E, p1, p2, s.cameraMatrix, R, t);
+    const MotionError e = compareMotion(R, t, s.R, s.t);
+    return {e.rotationDeg, e.translationDeg};
+}
+
+// The Sampson distance (pixels) of correspondence i to F.
+double sampsonDistance(const Mat& F, const Mat& points1, const Mat& points2, int i)
+{
+    const Vec3d x1(points1.at<double>(i, 0), points1.at<double>(i, 1), 1);
+    const Vec3d x2(points2.at<double>(i, 0), points2.at<double>(i, 1), 1);
+    const Matx33d f(F.ptr<double>());
+    const Vec3d fx1 = f * x1, ftx2 = f.t() * x2;
+    return std::abs(x2.dot(fx1)) /
+           std::sqrt(fx1[0] * fx1[0] + fx1[1] * fx1[1] + ftx2[0] * ftx2[0] + ftx2[1] * ftx2[1]);
+}
+
+// The median Sampson distance (pixels) of all the scene's correspondences to F.
+double medianSampson(const Mat& F, const SyntheticScene& s)
+{
+    std::vector<double> d;
+    for (int i = 0; i < s.points1.rows; ++i)
+        d.push_back(sampsonDistance(F, s.points1, s.points2, i));
+    std::nth_element(d.begin(), d.begin() + d.size() / 2, d.end());
+    return d[d.size() / 2];
+}
+
+/* Whether two distinct motions (5 deg of rotation or 15 of translation apart) each put every point
+within `threshold` px (Sampson) and in front of both cameras, by OpenCV's 5-point solver on every
+5-subset: points that do not determine the motion. */
+bool admitsTwoMotions(const Mat& p1, const Mat& p2, const Mat& K, double threshold)
+{
+    std::vector<std::pair<Mat, Mat>> motions;
+    const int n = p1.rows;
+    const Mat Kinv = K.inv();
+    for (int mask = 0; mask < (1 << n); ++mask) {
+        if (__builtin_popcount(static_cast<unsigned>(mask)) != 5)
+            continue;
+        Mat s1, s2;
+        for (int i = 0; i < n; ++i)
+            if (mask & (1 << i)) {
+                s1.push_back(p1.row(i));
+                s2.push_back(p2.row(i));
+            }
+        const Mat stacked = cv::findEssentialMat(s1, s2, K, RANSAC, 0.999, threshold);
+        for (int r = 0; r + 3 <= stacked.rows; r += 3) {
+            const Mat E = stacked.rowRange(r, r + 3), F = Kinv.t() * E * Kinv;
+            bool agree = true;
+            for (int i = 0; i < n && agree; ++i)
+                agree = sampsonDistance(F, p1, p2, i) <= threshold;
+            Mat R, t;
+            if (agree && cv::recoverPose(E, p1, p2, K, R, t, 1e9) == n)
+                motions.emplace_back(R, t);
+        }
+    }
+    for (size_t a = 0; a < motions.size(); ++a)
+        for (size_t b = a + 1; b < motions.size(); ++b) {
+            const MotionError e = compareMotion(motions[a].first, motions[a].second,
+                                                motions[b].first, motions[b].second);
+            if (e.rotationDeg > 5 || e.translationDeg > 15)
+                return true;
+        }
+    return false;
+}
+
+/* Issue 34, item 3: on exact and sub-pixel correspondences, 5 to 14 of them, rcme returns a model
+wherever OpenCV returns a right one (a refusal needs a point that disagrees, not a low count), of
+OpenCV's shape, type and scale: on exactly 7 points (F) every 7-point solution stacked as OpenCV's;
+on exactly 5 (E) those of OpenCV's solutions that put the five points in front of both cameras,
+the right one among them. */
+TEST(Rcme_OpenCVParity, few_consistent_points_give_opencvs_answer)
+{
+    int comparedF = 0, comparedE = 0, undetermined = 0;
+    for (double sigma : {0.0, 0.1})
+        for (int seed = 1; seed <= 5; ++seed) {
+            const SyntheticScene s =
+                generateScene(testSceneParams(SCENE_GENERIC, seed, 1.0, sigma, 100));
+            const Mat K = s.cameraMatrix;
+            for (int n = 5; n <= 14; ++n) {
+                SCOPED_TRACE(cv::format("sigma %g seed %d n %d", sigma, seed, n));
+                const Mat p1 = s.points1.rowRange(0, n), p2 = s.points2.rowRange(0, n);
+                for (int method : {int(RANSAC), int(LMEDS)}) {
+                    SCOPED_TRACE(method);
+                    Mat maskCv, maskRc;
+                    const Mat Ecv = cv::findEssentialMat(p1, p2, K, method, 0.999, 1.0, maskCv);
+                    const Mat Erc =
+                        cv::rcme::findEssentialMat(p1, p2, K, method, 0.999, 1.0, maskRc);
+                    if (Ecv.empty())
+                        continue;
+                    if (n == 5) {
+                        ASSERT_FALSE(Erc.empty());
+                        ASSERT_EQ(Erc.cols, 3);
+                        for (int r = 0; r < Erc.rows; r += 3) {
+                            const Mat block = Erc.rowRange(r, r + 3);
+                            EXPECT_TRUE(containsBlock(Ecv, block, 1e-6)) << r;
+                            EXPECT_NEAR(cv::norm(block), 1.0, 1e-9);
+                        }
+                        // OpenCV's solution closest to the true E is among rcme's.
+                        Mat closest;
+                        for (int r = 0; r < Ecv.rows; r += 3)
+                            if (closest.empty() || blockDistance(Ecv.rowRange(r, r + 3), s.E) <
+                                                       blockDistance(closest, s.E))
+                                closest = Ecv.rowRange(r, r + 3);
+                        EXPECT_TRUE(containsBlock(Erc, closest, 1e-6));
+                        ++comparedE;
+                        continue;
+                    }
+                    const std::pair<double, double> cvError = essentialError(Ecv, s, p1, p2);
+                    if (cvError.first > 2 || cvError.second > 10)
+                        continue; // OpenCV's answer is not right: nothing to match
+                    ++comparedE;
+                    if (Erc.empty()) { // only where the points do not determine the motion
+                        EXPECT_TRUE(admitsTwoMotions(p1, p2, K, 1.0));
+                        ++undetermined;
+                        continue;
+                    }
+                    expectOpenCVsAnswer(Ecv, Erc);
+                    const std::pair<double, double> rcError = essentialError(Erc, s, p1, p2);
+                    EXPECT_LE(rcError.first, 2);
+                    EXPECT_LE(rcError.second, 10);
+                    EXPECT_EQ(countNonZero(maskRc), n);
+                }
+                if (n < 7)
+                    continue;
+                for (int method : {int(FM_7POINT), int(FM_8POINT), int(FM_RANSAC), int(FM_LMEDS),
+                                   FM_RANSAC | FM_8POINT, FM_LMEDS | FM_8POINT}) {
+                    SCOPED_TRACE(method);
+                    Mat maskCv, maskRc;
+                    const Mat Fcv = cv::findFundamentalMat(p1, p2, method, 3., 0.99, maskCv);
+                    const Mat Frc = cv::rcme::findFundamentalMat(p1, p2, method, 3., 0.99, maskRc);
+                    if (Fcv.empty())
+                        continue;
+                    if (n == 7) {
+                        expectOpenCVsAnswer(Fcv, Frc);
+                        // OpenCV solves on CV_32F points: its F differ by up to 1e-5.
+                        for (int r = 0; r < Frc.rows; r += 3)
+                            EXPECT_TRUE(containsBlock(Fcv, Frc.rowRange(r, r + 3), 1e-4)) << r;
+                        ++comparedF;
+                        continue;
+                    }
+                    const double cvError = medianSampson(Fcv, s);
+                    if (cvError > 3)
+                        continue;
+                    ++comparedF;
+                    ASSERT_FALSE(Frc.empty()) << cvError;
+                    expectOpenCVsAnswer(Fcv, Frc);
+                    EXPECT_LE(medianSampson(Frc, s), 3);
+                    EXPECT_EQ(countNonZero(maskRc), n);
+                }
+            }
+        }
+    std::cout << comparedE << " E (" << undetermined << " of them undetermined by the points) and "
+              << comparedF << " F compared with OpenCV's right answers\n";
+    EXPECT_LE(undetermined, comparedE / 20);
+}
+
+} // namespace
+} // namespace opencv_test
+
+namespace opencv_test {
+namespace {
+
+// Where a call left the caller's mask buffer (filled with 7 before it).
+struct BufferUse
+{
+    bool inPlace = false; //!< the Mat still points into the caller's buffer
+    bool written = false; //!< no sentinel left in the buffer, every entry 0 or 1
+    Size size;
+};
+
+/* Issue 34, item 5: OpenCV writes the mask into the caller's existing CV_8U buffer (an Nx1 array
+in every form, a continuous 1xN one in calib3d's RANSAC and LMedS), a row of a larger matrix or a
+header over the caller's data; rcme writes into the same buffers, and replaces the same others. */
+TEST(Rcme_OpenCVParity, the_mask_goes_into_the_callers_buffer_where_opencv_writes_it)
+{
+    const SyntheticScene s = genericTestScene(3, 1.0, 60);
+    const Mat p1 = s.points1, p2 = s.points2, K = s.cameraMatrix, E = s.E;
+    const int n = p1.rows;
+    std::vector<Case> forms;
+    const auto addForm = [&forms](std::string name, auto f) {
+        forms.push_back(makeCase(std::move(name), f));
+    };
+    for (int m : {int(FM_RANSAC), int(FM_LMEDS), int(FM_8POINT), int(USAC_DEFAULT)})
+        addForm("F method " + std::to_string(m),
+                [=](auto api, Mat& k) { api.fundamental(p1, p2, m, 3., 0.99, 1000, k); });
+    addForm("F UsacParams", [=](auto api, Mat& k) { api.fundamental(p1, p2, k, UsacParams()); });
+    for (int m : {int(RANSAC), int(LMEDS), int(USAC_DEFAULT)})
+        addForm("E method " + std::to_string(m),
+                [=](auto api, Mat& k) { api.essential(p1, p2, K, m, 0.999, 1., 50, k); });
+    addForm("E two cameras", [=](auto api, Mat& k) {
+        api.essential(p1, p2, K, noArray(), K, noArray(), RANSAC, 0.999, 1., k);
+    });
+    addForm("E UsacParams", [=](auto api, Mat& k) {
+        api.essential(p1, p2, K, K, noArray(), noArray(), k, UsacParams());
+    });
+    addForm("R two cameras", [=](auto api, Mat& k) {
+        Mat e, R, t;
+        api.pose(p1, p2, K, noArray(), K, noArray(), e, R, t, RANSAC, 0.999, 1.0, k);
+    });
+    addForm("R from E", [=](auto api, Mat& k) {
+        Mat R, t;
+        api.pose(E, p1, p2, K, R, t, k);
+    });
+
+    // The caller's buffers, filled with 7.
+    const std::pair<const char*, std::function<Mat(std::vector<uchar>&)>> buffers[] = {
+        {"Nx1 over the caller's data",
+         [n](std::vector<uchar>& data) { return Mat(n, 1, CV_8U, data.data()); }},
+        {"1xN over the caller's data",
+         [n](std::vector<uchar>& data) { return Mat(1, n, CV_8U, data.data()); }},
+        {"row of a larger matrix",
+         [n](std::vector<uchar>& data) { return Mat(3, n, CV_8U, data.data()).row(1); }},
+        {"column of a larger matrix",
+         [n](std::vector<uchar>& data) { return Mat(n, 3, CV_8U, data.data()).col(1); }},
+    };
+    int inPlace = 0;
+    for (const Case& form : forms)
+        for (const auto& buffer : buffers) {
+            SCOPED_TRACE(form.name + ", " + buffer.first);
+            const auto use = [&](const std::function<Mat(Mat&)>& call, Outcome& outcome) {
+                std::vector<uchar> data(static_cast<size_t>(3 * n), 7);
+                Mat mask = buffer.second(data);
+                const uchar* before = mask.data;
+                const Mat view = mask; // the caller's buffer, whatever becomes of `mask`
+                outcome = runCall([&](Mat&) { return call(mask); }).outcome;
+                BufferUse u;
+                u.size = mask.size();
+                u.inPlace = mask.data == before;
+                u.written = countNonZero(view == 7) == 0 && countNonZero(view > 1) == 0;
+                return u;
+            };
+            Outcome cvOutcome, rcOutcome;
+            const BufferUse cv = use(form.opencv, cvOutcome), rc = use(form.rcme, rcOutcome);
+            EXPECT_EQ(outcomeName(rcOutcome), "accept");
+            if (rc.inPlace)
+                EXPECT_TRUE(rc.written); // rcme's mask is 0 or 1
+            if (cvOutcome == Outcome::Reject) {
+                // A deliberate difference: OpenCV's RANSAC, LMedS and recoverPose assert that the
+                // buffer is continuous; rcme writes into a column of a larger matrix too.
+                EXPECT_EQ(std::string(buffer.first), "column of a larger matrix");
+                EXPECT_TRUE(rc.inPlace);
+                continue;
+            }
+            EXPECT_EQ(rc.inPlace, cv.inPlace);
+            EXPECT_EQ(rc.size, cv.size);
+            inPlace += rc.inPlace;
+        }
+    std::cout << inPlace << " of " << forms.size() * 4 << " calls wrote into the caller's buffer\n";
+    EXPECT_GT(inPlace, static_cast<int>(forms.size()));
+}
+
+} // namespace
+} // namespace opencv_test
+
+namespace opencv_test {
+namespace {
+
+// The distances by which OpenCV 4.6's estimators mark a model's inliers (squared).
+enum class InlierDistance
+{
+    LargerLineDistance, //!< findFundamentalMat's RANSAC: the larger point-to-epipolar-line one
+    Sampson,            //!< USAC's F; findEssentialMat's RANSAC on normalized points
+    SymmetricLines      //!< USAC's E on normalized points: the sum of both point-line ones
+};
+
+double squaredInlierDistance(InlierDistance kind, const Matx33d& F, const Vec3d& x1,
+                             const Vec3d& x2)
+{
+    const Vec3d l2 = F * x1, l1 = F.t() * x2;
+    const double r = x2.dot(l2), a = l2[0] * l2[0] + l2[1] * l2[1],
+                 b = l1[0] * l1[0] + l1[1] * l1[1];
+    switch (kind) {
+    case InlierDistance::LargerLineDistance:
+        return std::max(r * r / a, r * r / b);
+    case InlierDistance::SymmetricLines:
+        return r * r / a + r * r / b;
+    case InlierDistance::Sampson:
+        break;
+    }
+    return r * r / (a + b);
+}
+
+// The mask (0 or 255) of the points within `threshold` px of `model` by `kind`: E on points
+// normalized by K against threshold / f, as OpenCV's; F on pixels.
+Mat maskByDistance(InlierDistance kind, const Mat& model, const Mat& p1, const Mat& p2,
+                   const Mat& K, double threshold)
+{
+    const Matx33d M(model.ptr<double>());
+    Mat mask(p1.rows, 1, CV_8U, Scalar(0));
+    const double f = K.empty() ? 1.0 : (K.at<double>(0, 0) + K.at<double>(1, 1)) / 2;
+    for (int i = 0; i < p1.rows; ++i) {
+        Vec3d x1(p1.at<double>(i, 0), p1.at<double>(i, 1), 1);
+        Vec3d x2(p2.at<double>(i, 0), p2.at<double>(i, 1), 1);
+        if (!K.empty()) {
+            const Matx33d Kinv = Matx33d(K.ptr<double>()).inv();
+            x1 = Kinv * x1;
+            x2 = Kinv * x2;
+        }
+        const double t = threshold / f;
+        mask.at<uchar>(i) = squaredInlierDistance(kind, M, x1, x2) <= t * t ? 255 : 0;
+    }
+    return mask;
+}
+
+/* Issue 34, item 7: the drop-in's mask marks the points within the threshold of its model by the
+distance of the OpenCV estimator the form stands for, and OpenCV's own mask is that distance on
+OpenCV's model (which this test checks, so that the distances are OpenCV's). On a forward motion
+(epipole in the image, where the distances part) with half outliers. */
+TEST(Rcme_OpenCVParity, the_mask_marks_inliers_by_opencvs_distance)
+{
+    SceneParams sp = testSceneParams(SCENE_GENERIC, 8, 0.5, 0.5, 300);
+    sp.forwardMotion = true;
+    const SyntheticScene s = generateScene(sp);
+    const Mat p1 = s.points1, p2 = s.points2, K = s.cameraMatrix;
+    const double threshold = 1.0;
+    struct Form
+    {
+        const char* name;
+        InlierDistance distance;
+        bool calibrated;
+        int method;
+    };
+    const Form forms[] = {
+        {"F FM_RANSAC", InlierDistance::LargerLineDistance, false, FM_RANSAC},
+        {"F USAC_DEFAULT", InlierDistance::Sampson, false, USAC_DEFAULT},
+        {"E RANSAC", InlierDistance::Sampson, true, RANSAC},
+        {"E USAC_DEFAULT", InlierDistance::SymmetricLines, true, USAC_DEFAULT},
+        // LMedS: OpenCV's mask takes its threshold from the median residual, rcme's the given
+        // one (a deliberate difference): rcme's alone is checked.
+        {"F FM_LMEDS", InlierDistance::LargerLineDistance, false, FM_LMEDS},
+        {"E LMEDS", InlierDistance::Sampson, true, LMEDS},
+    };
+    for (const Form& form : forms) {
+        SCOPED_TRACE(form.name);
+        Mat cvMask, rcMask, cvModel, rcModel;
+        if (form.calibrated) {
+            cvModel = cv::findEssentialMat(p1, p2, K, form.method, 0.999, threshold, cvMask);
+            rcModel = cv::rcme::findEssentialMat(p1, p2, K, form.method, 0.999, threshold, rcMask);
+        } else {
+            cvModel = cv::findFundamentalMat(p1, p2, form.method, threshold, 0.99, cvMask);
+            rcModel = cv::rcme::findFundamentalMat(p1, p2, form.method, threshold, 0.99, rcMask);
+        }
+        ASSERT_FALSE(cvModel.empty());
+        ASSERT_FALSE(rcModel.empty());
+        const Mat k = form.calibrated ? K : Mat();
+        // OpenCV decides on float residuals: a point on the boundary may go either way.
+        if (form.method != LMEDS)
+            EXPECT_LE(countNonZero(maskByDistance(form.distance, cvModel, p1, p2, k, threshold) !=
+                                   (cvMask != 0)),
+                      1);
+        EXPECT_EQ(countNonZero(maskByDistance(form.distance, rcModel, p1, p2, k, threshold) !=
+                               (rcMask != 0)),
+                  0);
+    }
+    // How much the distance matters: the true E's inliers by Sampson's distance (rcme's, in
+    // pixels) and by USAC's symmetric one, at 1 px, differ on these points (doc/dropin.md).
+    const Mat bySampson = maskByDistance(InlierDistance::Sampson, s.E, p1, p2, K, threshold);
+    const Mat bySymmetric =
+        maskByDistance(InlierDistance::SymmetricLines, s.E, p1, p2, K, threshold);
+    std::cout << "true E, 1 px: " << countNonZero(bySampson) << " inliers by Sampson's distance, "
+              << countNonZero(bySymmetric) << " by the symmetric epipolar distance, "
+              << countNonZero(bySampson != bySymmetric) << " points differ\n";
+}
+
+} // namespace
+} // namespace opencv_test
+
+namespace opencv_test {
+namespace {
+
+/* A scene in normalized coordinates (K = I), as VO programs pass it: `good` points of a box 2 x 2
+wide, 4 to 10 deep, seen before and after a sideways motion, with Gaussian noise of `sigma`
+normalized units. */
+void normalizedScene(int good, int seed, double sigma, Mat& points1, Mat& points2, Mat& R, Mat& t)
+{
+    RNG rng(static_cast<uint64>(seed));
+    Rodrigues(Vec3d(0.05, 0.1, -0.03), R);
+    t = (Mat_<double>(3, 1) << 1, 0.1, 0.2);
+    points1.create(good, 2, CV_64F);
+    points2.create(good, 2, CV_64F);
+    for (int i = 0; i < good; ++i) {
+        const Vec3d X(rng.uniform(-2., 2.), rng.uniform(-2., 2.), rng.uniform(4., 10.));
+        const Mat Y = R * Mat(X) + t;
+        points1.at<double>(i, 0) = X[0] / X[2] + rng.gaussian(sigma);
+        points1.at<double>(i, 1) = X[1] / X[2] + rng.gaussian(sigma);
+        points2.at<double>(i, 0) = Y.at<double>(0) / Y.at<double>(2) + rng.gaussian(sigma);
+        points2.at<double>(i, 1) = Y.at<double>(1) / Y.at<double>(2) + rng.gaussian(sigma);
+    }
+    t /= cv::norm(t);
+}
+
+/* Issue 34, item 4: gross outliers in normalized coordinates (K = I, threshold 1e-3 in those
+units, about 1 px at f = 1000): the 13 good points of the issue and (0,0) -> (1000,1000), exact
+and with sub-pixel noise, and 60 good points with three gross outliers. Wherever OpenCV's E is
+right, rcme's is too and leaves the invalid points out of its mask. The cause of the empty E was
+the selection, not the units: the band of a wrong E held as many points as the right one's, or
+the far point too, and when its motion then failed cheirality the estimate gave up; now the
+distinct motions the loop saw are settled in turn. */
+TEST(Rcme_OpenCVParity, gross_outliers_in_normalized_coordinates_leave_the_motion)
+{
+    const Mat I = Mat::eye(3, 3, CV_64F);
+    const double threshold = 1e-3;
+    int compared = 0, answered = 0;
+    for (int good : {13, 60})
+        for (double sigma : {0.0, 3e-4})
+            for (int seed = 0; seed < 40; ++seed) {
+                SCOPED_TRACE(cv::format("%d good, sigma %g, seed %d", good, sigma, seed));
+                Mat p1, p2, R, t;
+                normalizedScene(good, seed, sigma, p1, p2, R, t);
+                const Mat goodPoints1 = p1.clone(), goodPoints2 = p2.clone();
+                p1.push_back(Mat((Mat_<double>(1, 2) << 0, 0)));
+                p2.push_back(Mat((Mat_<double>(1, 2) << 1000, 1000)));
+                if (good > 13) { // two more: a far point and a mismatch inside the view
+                    p1.push_back(Mat((Mat_<double>(1, 2) << -700, 300)));
+                    p2.push_back(Mat((Mat_<double>(1, 2) << 0.1, -0.2)));
+                    p1.push_back(Mat((Mat_<double>(1, 2) << 0.3, 0.3)));
+                    p2.push_back(Mat((Mat_<double>(1, 2) << -0.4, 0.1)));
+                }
+                const auto error = [&](const Mat& E) {
+                    Mat Re, te;
+                    cv::recoverPose(E.rowRange(0, 3), goodPoints1, goodPoints2, I, Re, te);
+                    return compareMotion(Re, te, R, t);
+                };
+                Mat maskCv, maskRc;
+                const Mat Ecv = cv::findEssentialMat(p1, p2, I, RANSAC, 0.999, threshold, maskCv);
+                if (Ecv.empty() || error(Ecv).rotationDeg > 2 || error(Ecv).translationDeg > 10)
+                    continue;
+                ++compared;
+                const Mat Erc =
+                    cv::rcme::findEssentialMat(p1, p2, I, RANSAC, 0.999, threshold, maskRc);
+                if (Erc.empty()) {
+                    // A refusal only on evidence: a distinct motion about as good, or one too
+                    // uncertain (the status of the same estimate through the Params form).
+                    Params params;
+                    params.threshold = threshold;
+                    params.sigma = threshold / 1.959963984540054;
+                    params.solver = SOLVER_FIVE_POINT;
+                    params.confidence = 0.999;
+                    const Report report = estimateRelativeMotion(p1, p2, I, params);
+                    EXPECT_EQ(report.status, STATUS_UNDETERMINED_MOTION) << report.message;
+                    continue;
+                }
+                ++answered;
+                expectOpenCVsAnswer(Ecv, Erc);
+                EXPECT_LE(error(Erc).rotationDeg, 2);
+                EXPECT_LE(error(Erc).translationDeg, 10);
+                for (int i = good; i < p1.rows; ++i)
+                    EXPECT_EQ(maskRc.at<uchar>(i), 0) << i;
+                EXPECT_GE(countNonZero(maskRc.rowRange(0, good)), good * 3 / 4);
+            }
+    std::cout << "rcme answered " << answered << " of the " << compared
+              << " scenes where OpenCV's E is right\n";
+    EXPECT_GE(answered, compared * 9 / 10);
+}
+
+} // namespace
+} // namespace opencv_test
+
+namespace opencv_test {
+namespace {
+
+/* The deliberate difference of FM_8POINT (doc/dropin.md): on 15 or more points OpenCV's direct 8-point
+solution fits every point, so one gross outlier makes it wrong without a sign; rcme's stays
+robust and leaves the outlier out. */
+TEST(Rcme_OpenCVParity, fm_8point_stays_robust_on_many_points)
+{
+    const SyntheticScene s = genericTestScene(3, 1.0, 60);
+    Mat p1 = s.points1.clone(), p2 = s.points2.clone();
+    p2.at<double>(0, 0) += 200; // one gross outlier
+    p2.at<double>(0, 1) -= 150;
+    Mat maskCv, maskRc;
+    const Mat Fcv = cv::findFundamentalMat(p1, p2, FM_8POINT, 3., 0.99, maskCv);
+    const Mat Frc = cv::rcme::findFundamentalMat(p1, p2, FM_8POINT, 3., 0.99, maskRc);
+    ASSERT_FALSE(Fcv.empty());
+    ASSERT_FALSE(Frc.empty());
+    expectOpenCVsAnswer(Fcv, Frc);
+    EXPECT_EQ(countNonZero(maskCv), p1.rows); // OpenCV marks every point
+    EXPECT_EQ(maskRc.at<uchar>(0), 0);
+    std::cout << "median Sampson distance of the true correspondences: OpenCV's F "
+              << medianSampson(Fcv, s) << " px, rcme's " << medianSampson(Frc, s) << " px\n";
+    EXPECT_LT(medianSampson(Frc, s), 1.0);
+    EXPECT_GT(medianSampson(Fcv, s), 2 * medianSampson(Frc, s));
 }
 
 } // namespace

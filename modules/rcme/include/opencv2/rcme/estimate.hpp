@@ -50,16 +50,23 @@ CV_EXPORTS_W Mat findFundamentalMat(InputArray points1, InputArray points2, Inpu
 /** @brief Drop-in for cv::findFundamentalMat (every OpenCV 4.6 form has a twin below, with
 OpenCV's argument order and defaults).
 
-@param points1 see estimateRelativeMotion.
-@param points2 see estimateRelativeMotion.
-@param method an OpenCV flag (FM_7POINT, FM_8POINT, FM_LMEDS, FM_RANSAC, RHO, USAC_*), mapped to
-the rcme method of the same intent (doc/dropin.md), or a #Method value.
+@param points1 see estimateRelativeMotion; the layouts OpenCV reads in the same form: Nx2, Nx3
+(homogeneous), Nx1 or 1xN with 2 or 3 channels; with a USAC_* flag (and in the UsacParams form)
+2xN and 3xN single-channel too.
+@param points2 as points1.
+@param method an OpenCV flag as OpenCV decodes it (FM_7POINT, FM_8POINT, FM_LMEDS, FM_RANSAC and
+their combinations such as FM_RANSAC | FM_8POINT, RHO, USAC_*), mapped to the rcme method of the
+same intent (doc/dropin.md), or a #Method value; other values raise StsBadArg.
 @param ransacReprojThreshold inlier threshold in pixels; <= 0 or not finite: 3, as OpenCV.
 @param confidence in (0, 1); outside it 0.99, as OpenCV (NaN raises StsBadArg).
 @param maxIters iteration cap; <= 0 runs one iteration, as OpenCV.
-@param mask output Nx1 CV_8U inlier mask, always written (zeros on failure).
-@return F, or an empty matrix when no trustworthy F was found (OpenCV's "nothing found"): the
-OpenCV forms never throw on well-formed input; the forms with Params tell why.
+@param mask output CV_8U inlier mask, always written (zeros on failure), where OpenCV writes it:
+into the caller's Nx1 CV_8U array, and outside USAC also into a continuous 1xN one; else a new Nx1.
+@return F in OpenCV's scale (F(2,2) = 1 where it is not 0), or an empty matrix when no trustworthy F
+was found (OpenCV's "nothing found"): the OpenCV forms never throw on well-formed input; the
+#Params forms tell why. On fewer than 15 points that all agree with an F (within the threshold),
+that F, with every point marked; on exactly 7 such points outside USAC, every 7-point solution
+stacked (3k x 3), as OpenCV.
 */
 CV_EXPORTS_W Mat findFundamentalMat(InputArray points1, InputArray points2, int method,
                                     double ransacReprojThreshold, double confidence, int maxIters,
@@ -102,15 +109,20 @@ CV_EXPORTS_W Mat findEssentialMat(InputArray points1, InputArray points2, InputA
 
 /** @brief Drop-in for cv::findEssentialMat.
 
-@param points1 see estimateRelativeMotion.
-@param points2 see estimateRelativeMotion.
+@param points1 see estimateRelativeMotion; as OpenCV reads them here: Nx2, Nx1 or 1xN with two
+channels, both of one layout; with a USAC_* flag any layout of findFundamentalMat's USAC forms.
+@param points2 as points1.
 @param cameraMatrix 3x3 intrinsic matrix shared by both views.
-@param method as in findFundamentalMat's drop-in.
+@param method as in findFundamentalMat's drop-in (every flag but USAC_FM_8PTS and the #Method
+values runs the 5-point solver, as OpenCV).
 @param prob confidence, in (0, 1) (outside it StsBadArg, as OpenCV).
 @param threshold inlier threshold in pixels; <= 0 or not finite: 1, OpenCV's default.
 @param maxIters iteration cap; <= 0 runs one iteration, as OpenCV.
-@param mask output Nx1 CV_8U inlier mask, always written (zeros on failure).
-@return E, or an empty matrix on failure (never an exception on well-formed input).
+@param mask as in findFundamentalMat's drop-in.
+@return E in OpenCV's scale (unit Frobenius norm: singular values 1/sqrt(2), 1/sqrt(2), 0), or an
+empty matrix on failure (never an exception on well-formed input). On fewer than 15 points that all
+agree with a motion (within the threshold, in front of both cameras), its E; on exactly 5 such
+points outside USAC, every 5-point solution that puts them in front, stacked (3k x 3), as OpenCV.
 */
 CV_EXPORTS_W Mat findEssentialMat(InputArray points1, InputArray points2, InputArray cameraMatrix,
                                   int method = RANSAC, double prob = 0.999, double threshold = 1.0,
@@ -136,7 +148,8 @@ CV_EXPORTS Mat findEssentialMat(InputArray points1, InputArray points2, double f
 /** @overload
 Two cameras with distortion, as OpenCV does it: both point sets are undistorted
 (cv::undistortPoints) and mapped back to pixels by the mean of the two camera matrices, which is
-then the camera matrix of the estimate (so the threshold stays in pixels). */
+then the camera matrix of the estimate (so the threshold stays in pixels). The points in the
+layouts cv::undistortPoints takes: CV_32F or CV_64F, continuous, Nx2, 2xN, Nx1 or 1xN. */
 CV_EXPORTS_W Mat findEssentialMat(InputArray points1, InputArray points2, InputArray cameraMatrix1,
                                   InputArray distCoeffs1, InputArray cameraMatrix2,
                                   InputArray distCoeffs2, int method = RANSAC, double prob = 0.999,
@@ -144,7 +157,8 @@ CV_EXPORTS_W Mat findEssentialMat(InputArray points1, InputArray points2, InputA
 
 /** @overload
 Two cameras with distortion and cv::UsacParams (note OpenCV's argument order: both
-camera matrices, then both distortion vectors); UsacParams as in findFundamentalMat. */
+camera matrices, then both distortion vectors); UsacParams as in findFundamentalMat. Without
+distortion the points in USAC's layouts, with it in cv::undistortPoints'. */
 CV_EXPORTS_W Mat findEssentialMat(InputArray points1, InputArray points2, InputArray cameraMatrix1,
                                   InputArray cameraMatrix2, InputArray dist_coeff1,
                                   InputArray dist_coeff2, OutputArray mask,
@@ -180,13 +194,14 @@ CV_EXPORTS_W int recoverPose(InputArray points1, InputArray points2, InputArray 
 @param distCoeffs1 distortion coefficients of the first camera, as cv::undistortPoints reads them.
 @param cameraMatrix2 3x3 intrinsic matrix of the second camera.
 @param distCoeffs2 distortion coefficients of the second camera.
-@param E output essential matrix.
+@param E output essential matrix, in OpenCV's scale (unit norm).
 @param R output rotation.
 @param t output unit translation.
 @param method as in findEssentialMat.
 @param prob as in findEssentialMat.
 @param threshold as in findEssentialMat.
-@param mask output Nx1 CV_8U mask of the inliers that pass cheirality.
+@param mask output Nx1 CV_8U mask of the inliers that pass cheirality (into the caller's Nx1
+CV_8U array, as OpenCV).
 @return that number; on failure 0 with E empty, R = identity, t = 0 and a zero mask.
 */
 CV_EXPORTS_W int recoverPose(InputArray points1, InputArray points2, InputArray cameraMatrix1,
