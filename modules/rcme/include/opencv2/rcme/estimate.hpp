@@ -64,7 +64,7 @@ same intent (doc/dropin.md), or a #Method value; other values raise StsBadArg.
 into the caller's Nx1 CV_8U array, and outside USAC also into a continuous 1xN one; else a new Nx1.
 @return F in OpenCV's scale (F(2,2) = 1 where it is not 0), or an empty matrix when no trustworthy F
 was found (OpenCV's "nothing found"): the OpenCV forms never throw on well-formed input; the
-#Params forms tell why. On fewer than 15 points that all agree with an F (within the threshold),
+forms with Params tell why. On fewer than 15 points that all agree with an F (within the threshold),
 that F, with every point marked; on exactly 7 such points outside USAC, every 7-point solution
 stacked (3k x 3), as OpenCV.
 */
