@@ -49,8 +49,8 @@ N = 1000
 
 @dataclass
 class Tracks:
-    """Correspondences of a pair with what the analysis reads: the forward-backward error (KLT;
-    zeros for ORB) and the frames."""
+    """Correspondences of a pair and the forward-backward error of each (px; KLT, zeros for
+    ORB), which the analysis (vo_front_end_why.py) reads."""
     p1: np.ndarray
     p2: np.ndarray
     fb_error: np.ndarray

@@ -59,9 +59,10 @@ def regions(p, K, width):
     return road, border, upper
 
 
-def call(pair, budget, seed=0):
+def call(pair, budget, seed=0, degeneracy_test=True):
     params = methods.rcme_params(None, budget)
     params.randomGeneratorState = seed
+    params.degeneracyTest = degeneracy_test
     return rcme.estimateRelativeMotion(pair.points1, pair.points2, pair.K, params)
 
 
@@ -76,6 +77,15 @@ def describe(name, select, pair, tracks, threshold, width):
             "%.0f" % (100 * upper.mean()), "%.3f" % np.median(tracks.fb_error[select]),
             "%.2f" % np.median(true_sampson(pair)[select]),
             "%.0f" % (100 * np.mean(parallax < threshold))]
+
+
+def judge(pair, report):
+    """"right", "wrong" (with success) or "flagged"."""
+    if report.status != rcme.STATUS_SUCCESS:
+        return "flagged"
+    error = rcme.compareMotion(np.asarray(report.R), np.asarray(report.t).reshape(3, 1),
+                               pair.R_gt, pair.t_gt.reshape(3, 1))
+    return "wrong" if metrics.pose_failure(error.rotationDeg, error.translationDeg) else "right"
 
 
 def signals(pair, report, budget):
@@ -139,7 +149,7 @@ def main(argv=None):
     args = ap.parse_args(argv)
     cv2.setNumThreads(1)
     budget = methods.Budget(vo_front_end.N, args.sigma, 0, adaptive=True)
-    rows, describe_lines = [], []
+    rows, describe_lines, outcomes = [], [], []
     for label, sequence in vo_front_end.load_sequences(args.data):
         width = cv2.imread(sequence.images[0], cv2.IMREAD_GRAYSCALE).shape[1]
         for kind, pair, tracks in vo_front_end.vo_pairs(sequence, label,
@@ -147,6 +157,8 @@ def main(argv=None):
             if kind not in ("i+1", "i+2"):
                 continue
             report = call(pair, budget)
+            outcomes.append((pair.dataset + " " + kind, judge(pair, report),
+                             judge(pair, call(pair, budget, degeneracy_test=False))))
             if report.status != rcme.STATUS_SUCCESS:
                 rows.append(dict(seq=label, group="%s %s" % (pair.dataset, kind), pair=pair.name,
                                  ok=False))
@@ -175,10 +187,21 @@ def main(argv=None):
                     draw(args.figure, sequence.images[i], pair, mask & ~truth, truth & ~mask,
                          mask & truth)
     print("## Pairs returned with success, wrong (rcme default, KLT)\n")
-    print(table(["pair", "translation error deg", "inliers", "true motion's support"] + list(SIGNALS),
+    print(table(["pair", "translation error deg", "inliers", "true motion's support"]
+                + list(SIGNALS),
                 [[r["group"].split(" i+")[0] + " " + r["pair"], "%.0f" % r["trans"], r["inliers"],
                   r["true support"]] + ["%.3g" % r[s] for s in SIGNALS]
                  for r in rows if r["ok"] and r["wrong"]]))
+    print("\n## The same calls with Params.degeneracyTest = false\n")
+    lines = []
+    for group in sorted({g for g, _, _ in outcomes}):
+        for before in ("right", "wrong", "flagged"):
+            after = [a for g, b, a in outcomes if g == group and b == before]
+            if after:
+                lines.append([group, before, len(after)] + [after.count(o) for o in
+                                                            ("right", "wrong", "flagged")])
+    print(table(["pairs", "default", "count", "then right", "then wrong (success)", "then flagged"],
+                lines))
     print("\n## The tracks of the wrong and the true motion\n")
     print(table(["pair", "tracks", "count", "median parallax px (true R removed)", "road %",
                  "border %", "upper %", "median FB error px", "median Sampson px, true E",
