@@ -20,7 +20,7 @@
 #include "geometry/motion_parameterization.hpp"
 #include "geometry/statistics.hpp"
 
-#include <opencv2/calib3d.hpp>
+#include "opencv2/rcme/opencv_geometry.hpp"
 
 #include <algorithm>
 
