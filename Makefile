@@ -10,8 +10,13 @@ DEB_PACKAGES := build-essential cmake ninja-build ccache pkg-config libopencv-de
 	doxygen texlive-binaries
 # doxygen and texlive-binaries (its bibtex, for the headers' citations) are for make docs.
 # INTREE=0 skips the in-tree step of make test (OpenCV built from source with the module, see
-# test/opencv_intree/build_opencv_with_rcme.sh; dpkg-dev and the zlib/png/jpeg headers are for it).
+# test/opencv_intree/build_opencv_with_rcme.sh; python3-venv and the zlib/png/jpeg headers are for
+# it, dpkg-dev for OPENCV=debian).
 INTREE ?= 1
+# The OpenCV of the in-tree step (make test and make test-intree): 5.1 or 4.14 (PyPI's
+# opencv-contrib-python sdist, with opencv_contrib), or debian (the source package of the
+# installed OpenCV, 4.6 on Debian 12).
+OPENCV ?= 5.1
 # Length of the fuzzing run of make test / make fuzz, seconds (doc/hardening.md; clang and
 # libclang-rt-14-dev are for the fuzzer: libFuzzer and clang's ASan runtime).
 FUZZ_SECONDS ?= 60
@@ -32,7 +37,7 @@ demo: build
 # ending with a table of the parts and their wall times (test/run_test_parts.sh).
 test:
 	BUILD_DIR=$(BUILD_DIR) JOBS=$(JOBS) FUZZ_SECONDS=$(FUZZ_SECONDS) INTREE=$(INTREE) \
-	  MAKE="$(MAKE)" test/run_test_parts.sh
+	  OPENCV=$(OPENCV) MAKE="$(MAKE)" test/run_test_parts.sh
 
 # The API reference of the public headers and the tutorials (doc/Doxyfile), warnings as errors.
 # Without texmf.cnf (texlive-base is not needed) bibtex finds the bibliography and doxygen's
@@ -59,7 +64,7 @@ test-pip: deps
 	JOBS=$(JOBS) BUILD_DIR=$(BUILD_DIR) test/python_pip/run_pip_test.sh
 
 test-intree: deps
-	test/opencv_intree/build_opencv_with_rcme.sh --jobs $(JOBS)
+	test/opencv_intree/build_opencv_with_rcme.sh --opencv $(OPENCV) --jobs $(JOBS)
 
 build: configure
 	cmake --build $(BUILD_DIR) -j$(JOBS)

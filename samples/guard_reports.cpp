@@ -167,8 +167,7 @@ int main(int argc, char** argv)
             for (int v = 0; v < 2; ++v) {
                 const cv::Mat& src = v == 0 ? s.points1 : s.points2;
                 cv::Mat& dst = v == 0 ? n1 : n2;
-                cv::Mat x =
-                    (cv::Mat_<double>(3, 1) << src.at<double>(i, 0), src.at<double>(i, 1), 1.0);
+                cv::Mat x = cv::Mat(cv::Vec3d(src.at<double>(i, 0), src.at<double>(i, 1), 1.0));
                 cv::Mat y = Kinv * x;
                 dst.at<double>(i, 0) = y.at<double>(0) / y.at<double>(2);
                 dst.at<double>(i, 1) = y.at<double>(1) / y.at<double>(2);

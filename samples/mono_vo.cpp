@@ -42,12 +42,11 @@ folder); 3 error raised by the library.
 
 #include "sample_common.hpp"
 
-#include <opencv2/calib3d.hpp>
 #include <opencv2/core.hpp>
-#include <opencv2/features2d.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <opencv2/rcme.hpp>
+#include <opencv2/rcme/opencv_geometry.hpp> // cv::findEssentialMat & co.
 
 #include <algorithm>
 #include <cmath>

@@ -20,8 +20,16 @@ Prints one line per pair and then "median rotation error: X deg" against the gro
 own code, so the two builds differ in nothing but the namespace of the two calls.
 */
 
+#include <opencv2/core.hpp>
+// OpenCV 5 split calib3d (findEssentialMat and recoverPose are in geometry from 5.1 on) and
+// renamed features2d to features; opencv_modules.hpp, from core.hpp, says which modules exist.
+#ifdef HAVE_OPENCV_GEOMETRY
+#include <opencv2/features.hpp>
+#include <opencv2/geometry.hpp>
+#else
 #include <opencv2/calib3d.hpp>
 #include <opencv2/features2d.hpp>
+#endif
 #include <opencv2/imgcodecs.hpp>
 #ifdef VO_USES_RCME
 #include <opencv2/rcme.hpp>
@@ -60,8 +68,8 @@ std::vector<std::vector<double>> readRows(const std::string& path)
 
 cv::Mat rotationOf(const std::vector<double>& pose)
 {
-    return (cv::Mat_<double>(3, 3) << pose[0], pose[1], pose[2], pose[4], pose[5], pose[6], pose[8],
-            pose[9], pose[10]);
+    return cv::Mat(cv::Matx33d(pose[0], pose[1], pose[2], pose[4], pose[5], pose[6], pose[8],
+                               pose[9], pose[10]));
 }
 
 double angleDeg(const cv::Mat& R)

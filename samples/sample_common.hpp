@@ -8,7 +8,12 @@
 #define RCME_SAMPLES_SAMPLE_COMMON_HPP
 
 #include <opencv2/core.hpp>
+// features2d became features in OpenCV 5 (opencv_modules.hpp, from core.hpp, says which).
+#ifdef HAVE_OPENCV_FEATURES
+#include <opencv2/features.hpp>
+#else
 #include <opencv2/features2d.hpp>
+#endif
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/rcme.hpp>
 

@@ -5,7 +5,7 @@
 # minutes on a cold 2-core machine, at most 15 minutes warm.
 #
 # Environment (set by the Makefile): BUILD_DIR, JOBS, FUZZ_SECONDS, INTREE (0 skips the in-tree
-# OpenCV part), MAKE.
+# OpenCV part), OPENCV (the in-tree part's OpenCV, default 5.1), MAKE.
 set -uo pipefail
 cd "$(dirname "$0")/.."
 
@@ -13,6 +13,7 @@ build_dir=${BUILD_DIR:-build}
 jobs=${JOBS:-2}
 fuzz_seconds=${FUZZ_SECONDS:-60}
 intree=${INTREE:-1}
+opencv=${OPENCV:-5.1}
 make_cmd=${MAKE:-make}
 
 names=()
@@ -72,8 +73,8 @@ part "ASan + UBSan build and C++ tests" env JOBS="$jobs" test/hardening/run_sani
 part "TSan build and concurrency tests" env JOBS="$jobs" test/hardening/run_sanitizers.sh --tsan
 part "fuzzing ($fuzz_seconds s)" env JOBS="$jobs" test/hardening/run_fuzzer.sh "$fuzz_seconds"
 if [ "$intree" != 0 ]; then
-    part "in-tree OpenCV build and its tests" test/opencv_intree/build_opencv_with_rcme.sh \
-        --jobs "$jobs"
+    part "in-tree OpenCV $opencv build and its tests" \
+        test/opencv_intree/build_opencv_with_rcme.sh --opencv "$opencv" --jobs "$jobs"
 fi
 print_table
 if [ "$first_failure" -ne 0 ]; then

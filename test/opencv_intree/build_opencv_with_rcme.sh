@@ -9,26 +9,38 @@
 #      test class derives from NewOpenCVTests.
 # Exits non-zero on any failure.
 #
-# By default the OpenCV source is the Debian source package of the installed OpenCV
-# (`apt-get source opencv=<installed version>`; the script enables deb-src in apt's sources
-# when needed, with sudo when not root). --opencv-src DIR uses your own source tree instead.
-# The source and the build are cached outside the repository, in
+# Where the OpenCV source comes from (--opencv):
+#   5.1 (the default, make test's) or 4.14: the PyPI sdist of opencv-contrib-python at the pinned
+#     version below, which carries opencv/ and opencv_contrib/; it is fetched once with
+#     `pip download` (from a throwaway venv with scikit-build and numpy, which pip's metadata step
+#     needs) and the build gets opencv_contrib's modules beside rcme, as a contrib user has them;
+#   debian: the Debian source package of the installed OpenCV (`apt-get source
+#     opencv=<installed version>`, 4.6 on Debian 12; the script enables deb-src in apt's sources
+#     when needed, with sudo when not root).
+# --opencv-src DIR uses your own source tree instead (any 4.x or 5.x; an opencv_contrib/modules
+# beside it is used too, or give --contrib DIR).
+# The sources and the builds are cached outside the repository, in
 #   ${RCME_OPENCV_CACHE:-${XDG_CACHE_HOME:-$HOME/.cache}/rcme-opencv}/<version>/{src,build}
 # so a second run on the same machine (from any clone) only rebuilds what changed. CMake is
 # configured on every run: OpenCV globs the module's files only at configure time.
 #
-# Only the modules rcme needs are built (core imgproc flann features2d calib3d, plus imgcodecs
-# videoio highgui ts for the C++ tests and python3), with system libraries and without any
-# download (IPP, ADE, ITT, protobuf, optional codecs and GUI are off). ccache is used when
-# installed.
+# Only the modules rcme needs are built (core imgproc flann and the module with
+# findFundamentalMat & co.: calib3d with features2d in 4.x, geometry in 5.1, 3d in 5.0; plus
+# imgcodecs videoio highgui ts for the C++ tests and python3), with system libraries and without
+# any download (IPP, ADE, ITT, protobuf, optional codecs and GUI are off; the configure step fails
+# if OpenCV tried to download anything). ccache is used when installed.
 set -euo pipefail
 
 usage() {
   cat <<'EOF'
 Usage: test/opencv_intree/build_opencv_with_rcme.sh [options]
 
-  --opencv-src DIR   build this OpenCV 4.x source tree instead of the Debian source package
-                     of the installed OpenCV
+  --opencv VERSION   5.1 (default) or 4.14: the source of PyPI's opencv-contrib-python sdist
+                     (with opencv_contrib); debian: the Debian source package of the
+                     installed OpenCV (4.6 on Debian 12)
+  --opencv-src DIR   build this OpenCV 4.x or 5.x source tree instead
+  --contrib DIR      opencv_contrib's modules folder to add beside rcme (default: the sdist's,
+                     or DIR/../opencv_contrib/modules for --opencv-src DIR when it exists)
   --build-dir DIR    build folder (default: <cache>/<version>/build)
   -j, --jobs N       parallel jobs (default: $JOBS or 2)
   --python PATH      Python 3 interpreter to build cv2 for and run the tests with
@@ -36,7 +48,8 @@ Usage: test/opencv_intree/build_opencv_with_rcme.sh [options]
   --no-tests         build only
   -h, --help         this help
 
-Environment: RCME_OPENCV_CACHE (cache folder), XDG_CACHE_HOME, CCACHE_DIR, JOBS.
+Environment: OPENCV (as --opencv), RCME_OPENCV_CACHE (cache folder), XDG_CACHE_HOME,
+CCACHE_DIR, JOBS.
 EOF
 }
 
@@ -48,6 +61,8 @@ HOME_DIR="${HOME:-$(getent passwd "$(id -u)" | cut -d: -f6)}"
 CACHE_ROOT="${RCME_OPENCV_CACHE:-${XDG_CACHE_HOME:-$HOME_DIR/.cache}/rcme-opencv}"
 
 OPENCV_SRC=""
+OPENCV_CHOICE="${OPENCV:-5.1}"
+CONTRIB_DIR=""
 BUILD_DIR=""
 JOBS="${JOBS:-2}"
 PYTHON="/usr/bin/python3"
@@ -55,6 +70,10 @@ RUN_TESTS=1
 
 while [ $# -gt 0 ]; do
   case "$1" in
+    --opencv) OPENCV_CHOICE="${2:?--opencv needs a version}"; shift 2 ;;
+    --opencv=*) OPENCV_CHOICE="${1#*=}"; shift ;;
+    --contrib) CONTRIB_DIR="${2:?--contrib needs a folder}"; shift 2 ;;
+    --contrib=*) CONTRIB_DIR="${1#*=}"; shift ;;
     --opencv-src) OPENCV_SRC="${2:?--opencv-src needs a folder}"; shift 2 ;;
     --opencv-src=*) OPENCV_SRC="${1#*=}"; shift ;;
     --build-dir) BUILD_DIR="${2:?--build-dir needs a folder}"; shift 2 ;;
@@ -85,7 +104,18 @@ as_root() {
 # --- Debian packages the in-tree build needs (the Makefile's deps target installs them too)
 NEEDED_PACKAGES="build-essential cmake ninja-build pkg-config libeigen3-dev zlib1g-dev \
 libpng-dev libjpeg-dev python3-dev python3-numpy python3-pytest"
-[ -z "$OPENCV_SRC" ] && NEEDED_PACKAGES="$NEEDED_PACKAGES dpkg-dev"
+# The pinned PyPI sdists of --opencv: opencv-contrib-python's version for each OpenCV release.
+SDIST_VERSION=""
+if [ -z "$OPENCV_SRC" ]; then
+  case "$OPENCV_CHOICE" in
+    5.1 | 5.1.0 | 5.1.0.95) SDIST_VERSION=5.1.0.95 ;;
+    4.14 | 4.14.0 | 4.14.0.94) SDIST_VERSION=4.14.0.94 ;;
+    debian) NEEDED_PACKAGES="$NEEDED_PACKAGES dpkg-dev" ;;
+    *) echo "error: --opencv: 5.1, 4.14 or debian, not '$OPENCV_CHOICE' (or --opencv-src DIR)" >&2
+       exit 2 ;;
+  esac
+  [ -n "$SDIST_VERSION" ] && NEEDED_PACKAGES="$NEEDED_PACKAGES python3-venv"
+fi
 if command -v dpkg-query >/dev/null; then
   missing=""
   for p in $NEEDED_PACKAGES; do
@@ -131,8 +161,16 @@ opencv_version_of() {  # "4.6.0" from a source tree's version.hpp
   echo "${v%.}"
 }
 
-if [ -n "$OPENCV_SRC" ]; then
+if [ -n "$SDIST_VERSION" ]; then
+  VERSION="$SDIST_VERSION"
+  VERSION_DIR="$CACHE_ROOT/pypi-opencv-contrib-python-$SDIST_VERSION"
+  OPENCV_SRC="$VERSION_DIR/src/opencv"
+  [ -n "$CONTRIB_DIR" ] || CONTRIB_DIR="$VERSION_DIR/src/opencv_contrib/modules"
+elif [ -n "$OPENCV_SRC" ]; then
   OPENCV_SRC="$(cd "$OPENCV_SRC" && pwd)" || die "no folder $OPENCV_SRC"
+  if [ -z "$CONTRIB_DIR" ] && [ -d "$OPENCV_SRC/../opencv_contrib/modules" ]; then
+    CONTRIB_DIR="$(cd "$OPENCV_SRC/../opencv_contrib/modules" && pwd)"
+  fi
   VERSION="$(opencv_version_of "$OPENCV_SRC")" \
     || die "$OPENCV_SRC is not an OpenCV source tree (no modules/core/include/opencv2/core/version.hpp)"
   VERSION_DIR="$CACHE_ROOT/$VERSION-src-$(printf '%s' "$OPENCV_SRC" | sha1sum | cut -c1-8)"
@@ -186,7 +224,35 @@ if [ ! -f "$OPENCV_SRC/.rcme-source-complete" ] && [ -n "${SRC_PKG:-}" ]; then
   rm -rf "$fetch"
   touch "$OPENCV_SRC/.rcme-source-complete"
 fi
+# The sdist: fetched by pip (the one network access, to PyPI), unpacked without its Python
+# packaging, kept with a marker once complete.
+if [ -n "$SDIST_VERSION" ] && [ ! -f "$VERSION_DIR/src/.rcme-source-complete" ]; then
+  step "Fetching opencv-contrib-python==$SDIST_VERSION (sdist) from PyPI into $VERSION_DIR/src"
+  venv="$CACHE_ROOT/pip-download-venv"
+  if [ ! -x "$venv/bin/pip" ]; then
+    rm -rf "$venv"
+    /usr/bin/python3 -m venv "$venv"
+    # pip runs the sdist's metadata step (setup.py), which imports skbuild and numpy.
+    "$venv/bin/pip" install -q --disable-pip-version-check scikit-build numpy
+  fi
+  fetch="$VERSION_DIR/fetch.tmp"
+  rm -rf "$fetch" "$VERSION_DIR/src"
+  mkdir -p "$fetch"
+  "$venv/bin/pip" download -q --disable-pip-version-check --no-binary :all: --no-deps \
+    --no-build-isolation -d "$fetch" "opencv-contrib-python==$SDIST_VERSION"
+  archive="$(find "$fetch" -maxdepth 1 -name "opencv_contrib_python-$SDIST_VERSION.tar.gz" | head -n1)"
+  [ -n "$archive" ] || die "pip downloaded no opencv_contrib_python-$SDIST_VERSION.tar.gz into $fetch"
+  top="opencv_contrib_python-$SDIST_VERSION"
+  tar -xzf "$archive" -C "$fetch" "$top/opencv" "$top/opencv_contrib"
+  mkdir -p "$VERSION_DIR/src"
+  mv "$fetch/$top/opencv" "$fetch/$top/opencv_contrib" "$VERSION_DIR/src/"
+  rm -rf "$fetch"
+  touch "$VERSION_DIR/src/.rcme-source-complete"
+fi
 [ -f "$OPENCV_SRC/CMakeLists.txt" ] || die "no OpenCV source in $OPENCV_SRC"
+if [ -n "$CONTRIB_DIR" ]; then
+  CONTRIB_DIR="$(cd "$CONTRIB_DIR" && pwd)" || die "no folder $CONTRIB_DIR (--contrib)"
+fi
 SRC_VERSION_NUMBER="$(opencv_version_of "$OPENCV_SRC")"
 
 # --- The module, copied to one place per build folder
@@ -212,7 +278,20 @@ MODULES_DIR="$BUILD_DIR/rcme-modules"
 PY_TEST_DIR="$MODULES_DIR/rcme/misc/python/test"
 sync_tree "$CLONE_MODULES_DIR" "$MODULES_DIR"
 
+# The module that declares findFundamentalMat & co. and what it needs (the module's CMakeLists.txt
+# picks the same one): geometry (5.1 on), 3d (5.0), calib3d with features2d (4.x).
+if [ -d "$OPENCV_SRC/modules/geometry" ]; then
+  GEOMETRY_MODULES=geometry
+elif [ -d "$OPENCV_SRC/modules/3d" ]; then
+  GEOMETRY_MODULES=3d
+else
+  GEOMETRY_MODULES=features2d,calib3d
+fi
+EXTRA_MODULES="$MODULES_DIR"
+[ -z "$CONTRIB_DIR" ] || EXTRA_MODULES="$MODULES_DIR;$CONTRIB_DIR"
+
 echo "OpenCV source: $OPENCV_SRC (OpenCV $SRC_VERSION_NUMBER)"
+echo "contrib:       ${CONTRIB_DIR:-(none)}"
 echo "Build folder:  $BUILD_DIR"
 echo "rcme modules:  $MODULES_DIR (a copy of $CLONE_MODULES_DIR)"
 
@@ -225,9 +304,9 @@ if command -v ccache >/dev/null; then CCACHE_FLAG=ON; fi
 CMAKE_ARGS=(
   -G Ninja
   -DCMAKE_BUILD_TYPE=Release
-  -DOPENCV_EXTRA_MODULES_PATH="$MODULES_DIR"
+  -DOPENCV_EXTRA_MODULES_PATH="$EXTRA_MODULES"
   # python_tests writes opencv_python_tests.cfg (the test folders OpenCV's runner collects).
-  -DBUILD_LIST=core,imgproc,flann,features2d,calib3d,imgcodecs,videoio,highgui,ts,python3,python_tests,rcme
+  -DBUILD_LIST=core,imgproc,flann,$GEOMETRY_MODULES,imgcodecs,videoio,highgui,ts,python3,python_tests,rcme
   -DBUILD_opencv_python3=ON -DBUILD_opencv_python2=OFF
   -DPYTHON3_EXECUTABLE="$PYTHON" -DPYTHON_DEFAULT_EXECUTABLE="$PYTHON"
   -DBUILD_TESTS=ON -DBUILD_PERF_TESTS=OFF -DBUILD_EXAMPLES=OFF -DBUILD_DOCS=OFF
@@ -242,6 +321,10 @@ CMAKE_ARGS=(
   -DWITH_IPP=OFF -DWITH_ADE=OFF -DWITH_ITT=OFF -DWITH_PROTOBUF=OFF -DWITH_CAROTENE=OFF
   -DWITH_QUIRC=OFF -DWITH_LAPACK=OFF -DWITH_TBB=OFF -DWITH_OPENCL=OFF -DWITH_CUDA=OFF
   -DWITH_VA=OFF -DWITH_VA_INTEL=OFF
+  # Options of newer OpenCVs (older ones ignore them, with a warning): nothing the tests do not
+  # need.
+  -DWITH_FLATBUFFERS=OFF -DWITH_HARFBUZZ=OFF -DBUILD_HARFBUZZ=OFF -DWITH_KLEIDICV=OFF
+  -DWITH_FASTCV=OFF -DWITH_OPENVINO=OFF -DWITH_OBSENSOR=OFF -DWITH_AVIF=OFF -DWITH_SPNG=OFF
   # imgcodecs with the system zlib, libpng and libjpeg only; no video or GUI backends.
   -DBUILD_ZLIB=OFF -DBUILD_PNG=OFF -DBUILD_JPEG=OFF -DBUILD_TIFF=OFF -DBUILD_WEBP=OFF
   -DBUILD_OPENJPEG=OFF -DBUILD_OPENEXR=OFF -DBUILD_JASPER=OFF

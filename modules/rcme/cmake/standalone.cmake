@@ -54,8 +54,9 @@ elseif(RCME_FUZZ)
   message(FATAL_ERROR "RCME_FUZZ needs RCME_SANITIZE=address")
 endif()
 
-set(RCME_OPENCV_COMPONENTS core imgproc features2d calib3d)
-find_package(OpenCV 4.6 REQUIRED COMPONENTS ${RCME_OPENCV_COMPONENTS})
+include("${CMAKE_CURRENT_LIST_DIR}/find_opencv.cmake")
+rcme_find_opencv()
+message(STATUS "rcme: OpenCV ${OpenCV_VERSION} (${OpenCV_DIR}), with opencv_${RCME_OPENCV_GEOMETRY}")
 find_package(Eigen3 3.3 REQUIRED NO_MODULE)
 
 set(RCME_MODULE_DIR "${CMAKE_CURRENT_LIST_DIR}/..")
@@ -74,8 +75,8 @@ target_compile_options(rcme_objects PRIVATE -Wall -Wextra)
 target_include_directories(rcme_objects
   PUBLIC $<BUILD_INTERFACE:${RCME_MODULE_DIR}/include>
   PRIVATE ${RCME_MODULE_DIR}/src)
-target_link_libraries(rcme_objects PUBLIC opencv_core opencv_imgproc opencv_features2d
-  opencv_calib3d Eigen3::Eigen)
+target_link_libraries(rcme_objects PUBLIC opencv_core opencv_imgproc
+  opencv_${RCME_OPENCV_GEOMETRY} Eigen3::Eigen)
 
 add_library(rcme SHARED $<TARGET_OBJECTS:rcme_objects>)
 add_library(rcme::rcme ALIAS rcme)
@@ -87,8 +88,8 @@ set_target_properties(rcme PROPERTIES
 target_include_directories(rcme PUBLIC
   $<BUILD_INTERFACE:${RCME_MODULE_DIR}/include>
   $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>)
-target_link_libraries(rcme PUBLIC opencv_core opencv_calib3d
-  PRIVATE opencv_imgproc opencv_features2d)
+target_link_libraries(rcme PUBLIC opencv_core opencv_${RCME_OPENCV_GEOMETRY}
+  PRIVATE opencv_imgproc)
 
 install(TARGETS rcme EXPORT rcmeTargets
   LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}

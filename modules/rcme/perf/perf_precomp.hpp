@@ -12,6 +12,6 @@
 
 #include "opencv2/rcme.hpp"
 
-#include <opencv2/calib3d.hpp>
+#include "opencv2/rcme/opencv_geometry.hpp"
 
 #endif // OPENCV_RCME_PERF_PRECOMP_HPP

@@ -11,9 +11,13 @@
 // K.txt holds the 3x3 camera matrix, row by row. Exit code 0 when rcme returns a motion, 1 when
 // it reports a failure status, 2 on a usage or input error.
 
-#include <opencv2/calib3d.hpp>
 #include <opencv2/core.hpp>
+// features2d became features in OpenCV 5 (opencv_modules.hpp, from core.hpp, says which).
+#ifdef HAVE_OPENCV_FEATURES
+#include <opencv2/features.hpp>
+#else
 #include <opencv2/features2d.hpp>
+#endif
 #include <opencv2/imgcodecs.hpp>
 //! [include]
 #include <opencv2/rcme.hpp>

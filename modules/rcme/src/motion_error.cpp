@@ -66,14 +66,13 @@ Matrix3d readRotation(InputArray input, const char* function, const char* name)
     return Q;
 }
 
-// A non-zero 3-vector (3x1, 1x3, or 1x1 with three channels), returned with unit length.
+// A non-zero 3-vector (3x1, 1x3, or 1x1 with three channels; OpenCV 5 also makes a
+// one-dimensional Mat of three, e.g. from a NumPy array of shape (3,)), returned with unit length.
 Vector3d readDirection(InputArray input, const char* function, const char* name)
 {
     const Mat m = input.getMat();
     const bool shapeOk =
-        !m.empty() && m.dims == 2 && isFloatDepth(m.depth()) &&
-        ((m.channels() == 1 && ((m.rows == 3 && m.cols == 1) || (m.rows == 1 && m.cols == 3))) ||
-         (m.channels() == 3 && m.rows == 1 && m.cols == 1));
+        !m.empty() && isFloatDepth(m.depth()) && (m.checkVector(1) == 3 || m.checkVector(3) == 1);
     if (!shapeOk)
         CV_Error(Error::StsBadArg,
                  format("%s: %s must be a floating-point 3-vector (3x1 or 1x3)", function, name));

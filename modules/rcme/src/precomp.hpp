@@ -7,7 +7,7 @@
 // Only public OpenCV headers: Debian installs no opencv2/core/private.hpp.
 #include "opencv2/rcme.hpp"
 
-#include <opencv2/calib3d.hpp>
+#include "opencv2/rcme/opencv_geometry.hpp"
 #include <opencv2/core.hpp>
 
 #include <Eigen/Core>

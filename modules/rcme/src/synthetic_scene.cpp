@@ -483,7 +483,7 @@ SyntheticScene generateScene(const SceneParams& params)
 
     scene.cameraMatrix = toMat(Kmat);
     scene.R = toMat(R);
-    scene.t = (Mat_<double>(3, 1) << t.x(), t.y(), t.z());
+    scene.t = Mat(Vec3d(t.x(), t.y(), t.z()));
     scene.E = toMat(E);
     scene.F = toMat(F);
     return scene;

@@ -37,7 +37,7 @@ Mat randomPoints(int n, int seed, double extent = 640)
 
 Mat cameraMatrix()
 {
-    return (Mat_<double>(3, 3) << 500, 0, 320, 0, 500, 240, 0, 0, 1);
+    return Mat(Matx33d(500, 0, 320, 0, 500, 240, 0, 0, 1));
 }
 
 // Every estimating entry point, called with (points1, points2, K); returns the status and
@@ -120,12 +120,12 @@ TEST(Rcme_BadInput, malformed_points_throw_naming_the_argument)
 TEST(Rcme_BadInput, malformed_camera_matrix_throws_naming_it)
 {
     const Mat p1 = randomPoints(50, 1), p2 = randomPoints(50, 2);
-    const Mat singular = (Mat_<double>(3, 3) << 0, 0, 320, 0, 0, 240, 0, 0, 1);
-    const Mat notProjective = (Mat_<double>(3, 3) << 500, 0, 320, 0, 500, 240, 1, 0, 1);
-    const Mat nan = (Mat_<double>(3, 3) << 500, 0, NAN, 0, 500, 240, 0, 0, 1);
+    const Mat singular = Mat(Matx33d(0, 0, 320, 0, 0, 240, 0, 0, 1));
+    const Mat notProjective = Mat(Matx33d(500, 0, 320, 0, 500, 240, 1, 0, 1));
+    const Mat nan = Mat(Matx33d(500, 0, NAN, 0, 500, 240, 0, 0, 1));
     const Mat twoByThree(2, 3, CV_64F, Scalar(1));
     const Mat fourByFour = Mat::eye(4, 4, CV_64F);
-    const Mat negativeFocal = (Mat_<double>(3, 3) << 500, 0, 320, 0, -500, 240, 0, 0, 1);
+    const Mat negativeFocal = Mat(Matx33d(500, 0, 320, 0, -500, 240, 0, 0, 1));
     for (const EntryPoint& entry : entryPoints()) {
         if (std::string(entry.name) == "findFundamentalMat")
             continue; // takes no camera matrix
@@ -326,9 +326,9 @@ TEST(Rcme_BadInput, negative_focal_length_is_rejected_with_a_message)
 TEST(Rcme_BadInput, recover_pose_from_e_checks_its_arguments)
 {
     const Mat p1 = randomPoints(50, 1), p2 = randomPoints(50, 2), K = cameraMatrix();
-    const Mat E = (Mat_<double>(3, 3) << 0, -1, 0, 1, 0, 0, 0, 0, 0);
+    const Mat E = Mat(Matx33d(0, -1, 0, 1, 0, 0, 0, 0, 0));
     Mat R, t;
-    const Mat nanE = (Mat_<double>(3, 3) << 0, -1, 0, 1, 0, 0, 0, 0, NAN);
+    const Mat nanE = Mat(Matx33d(0, -1, 0, 1, 0, 0, 0, 0, NAN));
     expectErrorNaming([&] { cv::rcme::recoverPose(nanE, p1, p2, K, R, t); }, "E");
     expectErrorNaming([&] { cv::rcme::recoverPose(Mat::eye(2, 3, CV_64F), p1, p2, K, R, t); }, "E");
     expectErrorNaming([&] { cv::rcme::recoverPose(E, p1, p2, Mat(), R, t); }, "cameraMatrix");

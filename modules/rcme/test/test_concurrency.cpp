@@ -108,7 +108,7 @@ Results callEveryFunction(int task)
 
     if (report.status == STATUS_SUCCESS) {
         const MotionError e = compareMotion(report.R, report.t, scene.R, scene.t);
-        out.push_back((Mat_<double>(4, 1) << e.dq, e.dt, e.rotationDeg, e.translationDeg));
+        out.push_back(Mat(Vec4d(e.dq, e.dt, e.rotationDeg, e.translationDeg)));
     }
     out.push_back(text(statusToString(report.status)));
 

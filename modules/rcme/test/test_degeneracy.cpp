@@ -235,7 +235,7 @@ TEST(Rcme_Degeneracy, generated_planes_and_pure_rotations)
         const Report q = estimateRelativeMotion(rotation.points1, rotation.points2,
                                                 rotation.cameraMatrix, params);
         ASSERT_EQ(q.status, STATUS_PURE_ROTATION) << seed << ": " << q.message;
-        const Mat unit = (Mat_<double>(3, 1) << 1, 0, 0);
+        const Mat unit = Mat(Vec3d(1, 0, 0));
         EXPECT_LT(compareMotion(q.R, unit, rotation.R, unit).rotationDeg, 0.3) << seed;
         EXPECT_EQ(
             estimateRelativeMotion(rotation.points1, rotation.points2, noArray(), params).status,

@@ -94,8 +94,9 @@ void projectTwoViews(RNG& rng, const Matx33d& K, const Matx33d& R, const Vec3d& 
         p2.emplace_back(rng.uniform(0.0, double(image.width)),
                         rng.uniform(0.0, double(image.height)));
     }
-    Mat(p1).reshape(1).copyTo(points1);
-    Mat(p2).reshape(1).copyTo(points2);
+    // Rows given: OpenCV 5 makes a Mat of a vector one-dimensional, 4.x a column.
+    Mat(p1).reshape(1, static_cast<int>(p1.size())).copyTo(points1);
+    Mat(p2).reshape(1, static_cast<int>(p2.size())).copyTo(points2);
 }
 
 //! The well-conditioned generic scene, shared by the tests that need one.

@@ -103,7 +103,7 @@ TEST(Rcme_Properties, pixel_unit_does_not_change_the_motion)
                 << "method " << static_cast<int>(method) << ", seed " << seed;
             for (const double s : factors) {
                 SCOPED_TRACE(cv::format("method %d, seed %d, factor %g", method, seed, s));
-                const Mat scaleRows = (Mat_<double>(3, 3) << s, 0, 0, 0, s, 0, 0, 0, 1);
+                const Mat scaleRows = Mat(Matx33d(s, 0, 0, 0, s, 0, 0, 0, 1));
                 const Mat K = scaleRows * scene.cameraMatrix;
                 Params scaled = params;
                 scaled.sigma = params.sigma * s;

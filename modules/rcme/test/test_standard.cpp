@@ -5,7 +5,7 @@
 
 #include "test_precomp.hpp"
 
-#include <opencv2/calib3d.hpp>
+#include "opencv2/rcme/opencv_geometry.hpp"
 
 #include <algorithm>
 #include <thread>
@@ -118,8 +118,8 @@ TEST(Rcme_Standard, recover_pose_follows_opencv_conventions)
     EXPECT_EQ(mask.cols, 1);
     EXPECT_EQ(countNonZero(mask), count);
     // E = [t]x R and cv::recoverPose agrees with our R, t from our E and mask.
-    Mat tx = (Mat_<double>(3, 3) << 0, -t.at<double>(2), t.at<double>(1), t.at<double>(2), 0,
-              -t.at<double>(0), -t.at<double>(1), t.at<double>(0), 0);
+    Mat tx = Mat(Matx33d(0, -t.at<double>(2), t.at<double>(1), t.at<double>(2), 0, -t.at<double>(0),
+                         -t.at<double>(1), t.at<double>(0), 0));
     EXPECT_LT(cv::norm(E - tx * R), 1e-9);
     Mat Rcv, tcv, maskCv = mask.clone();
     cv::recoverPose(E, scene.points1, scene.points2, scene.cameraMatrix, Rcv, tcv, maskCv);

@@ -3,7 +3,7 @@
 
 #include "test_precomp.hpp"
 
-#include <opencv2/calib3d.hpp>
+#include "opencv2/rcme/opencv_geometry.hpp"
 
 #include <cmath>
 #include <functional>
@@ -28,13 +28,13 @@ double maxAbsDiff(const Mat& a, const Mat& b)
 Mat skew(const Mat& t)
 {
     const double x = t.at<double>(0), y = t.at<double>(1), z = t.at<double>(2);
-    return (Mat_<double>(3, 3) << 0, -z, y, z, 0, -x, -y, x, 0);
+    return Mat(Matx33d(0, -z, y, z, 0, -x, -y, x, 0));
 }
 
 Mat rotation(double angleDeg, double ax, double ay, double az)
 {
     const double len = std::sqrt(ax * ax + ay * ay + az * az);
-    Mat rvec = (Mat_<double>(3, 1) << ax, ay, az) * (angleDeg * CV_PI / 180.0 / len);
+    Mat rvec = Mat(Vec3d(ax, ay, az)) * (angleDeg * CV_PI / 180.0 / len);
     Mat R;
     cv::Rodrigues(rvec, R);
     return R;
@@ -43,8 +43,8 @@ Mat rotation(double angleDeg, double ax, double ay, double az)
 // First-order geometric distance (pixels) of a correspondence to the epipolar geometry of F.
 double sampson(const Mat& F, const Mat& p1, const Mat& p2, int i)
 {
-    const Mat x1 = (Mat_<double>(3, 1) << p1.at<double>(i, 0), p1.at<double>(i, 1), 1.0);
-    const Mat x2 = (Mat_<double>(3, 1) << p2.at<double>(i, 0), p2.at<double>(i, 1), 1.0);
+    const Mat x1 = Mat(Vec3d(p1.at<double>(i, 0), p1.at<double>(i, 1), 1.0));
+    const Mat x2 = Mat(Vec3d(p2.at<double>(i, 0), p2.at<double>(i, 1), 1.0));
     const Mat Fx1 = F * x1;
     const Mat Ftx2 = F.t() * x2;
     const double r = x2.dot(Fx1);
@@ -143,7 +143,7 @@ TEST(Rcme_Synthetic, output_types_and_shapes)
         }
         EXPECT_EQ(CV_64FC1, s.t.type());
         EXPECT_EQ(Size(1, 3), s.t.size());
-        const Mat K = (Mat_<double>(3, 3) << 500, 0, 320, 0, 500, 240, 0, 0, 1);
+        const Mat K = Mat(Matx33d(500, 0, 320, 0, 500, 240, 0, 0, 1));
         EXPECT_EQ(0.0, maxAbsDiff(K, s.cameraMatrix));
     }
 }
@@ -289,10 +289,10 @@ TEST(Rcme_Synthetic, noise_free_inliers_satisfy_the_epipolar_constraint)
             const SyntheticScene s = generateScene(makeParams(kind, seed, 600, 0.5, 0.0));
             int outliers = 0, farOutliers = 0;
             for (int i = 0; i < s.points1.rows; ++i) {
-                const Mat x1 = (Mat_<double>(3, 1) << s.points1.at<double>(i, 0),
-                                s.points1.at<double>(i, 1), 1.0);
-                const Mat x2 = (Mat_<double>(3, 1) << s.points2.at<double>(i, 0),
-                                s.points2.at<double>(i, 1), 1.0);
+                const Mat x1 =
+                    Mat(Vec3d(s.points1.at<double>(i, 0), s.points1.at<double>(i, 1), 1.0));
+                const Mat x2 =
+                    Mat(Vec3d(s.points2.at<double>(i, 0), s.points2.at<double>(i, 1), 1.0));
                 const double algebraic = std::abs(x2.dot(s.F * x1));
                 const double d = sampson(s.F, s.points1, s.points2, i);
                 if (s.inlierMask.at<uchar>(i)) {
@@ -333,7 +333,7 @@ TEST(Rcme_Synthetic, ground_truth_is_consistent)
             p.imageWidth = 800;
             p.imageHeight = 600;
             const SyntheticScene s = generateScene(p);
-            const Mat K = (Mat_<double>(3, 3) << 700, 0, 400, 0, 700, 300, 0, 0, 1);
+            const Mat K = Mat(Matx33d(700, 0, 400, 0, 700, 300, 0, 0, 1));
             EXPECT_EQ(0.0, maxAbsDiff(K, s.cameraMatrix));
 
             EXPECT_LT(maxAbsDiff(s.R.t() * s.R, Mat::eye(3, 3, CV_64F)), 1e-12);
@@ -615,7 +615,7 @@ TEST(Rcme_Synthetic, bad_parameters_throw_naming_the_field)
 TEST(Rcme_Synthetic, compare_motion_identical_inputs_give_zero_error)
 {
     const Mat R = rotation(37.0, 0.3, -1.0, 0.5);
-    const Mat t = (Mat_<double>(3, 1) << 0.2, -0.4, 0.9);
+    const Mat t = Mat(Vec3d(0.2, -0.4, 0.9));
     const MotionError e = compareMotion(R, t, R, t);
     EXPECT_NEAR(0.0, e.dq, 1e-12);
     EXPECT_NEAR(0.0, e.dt, 1e-12);
@@ -631,12 +631,12 @@ TEST(Rcme_Synthetic, compare_motion_identical_inputs_give_zero_error)
 TEST(Rcme_Synthetic, compare_motion_known_errors)
 {
     const Mat Rgt = rotation(25.0, 1.0, 0.2, -0.3);
-    const Mat tgt = (Mat_<double>(3, 1) << 1.0, 0.0, 0.0);
+    const Mat tgt = Mat(Vec3d(1.0, 0.0, 0.0));
     const double angles[] = {1e-6, 0.5, 10.0, 90.0, 170.0, 180.0};
     for (double deg : angles) {
         const Mat R = Rgt * rotation(deg, 1.0, 2.0, 3.0);
         // 30 degrees away from tgt, in the XY plane.
-        const Mat t = (Mat_<double>(3, 1) << std::cos(CV_PI / 6), std::sin(CV_PI / 6), 0.0);
+        const Mat t = Mat(Vec3d(std::cos(CV_PI / 6), std::sin(CV_PI / 6), 0.0));
         const MotionError e = compareMotion(R, t, Rgt, tgt);
         // |q - q_gt| = 2 sin(theta / 4) for unit quaternions theta apart.
         EXPECT_NEAR(2.0 * std::sin(deg * CV_PI / 180.0 / 4.0), e.dq, 1e-9) << deg;
@@ -661,7 +661,7 @@ TEST(Rcme_Synthetic, compare_motion_is_insensitive_to_quaternion_sign)
     // as converted may have opposite signs of the scalar part.
     const Mat a = rotation(179.0, 0.0, 1.0, 0.0);
     const Mat b = rotation(-179.0, 0.0, 1.0, 0.0);
-    const Mat t = (Mat_<double>(3, 1) << 0, 0, 1);
+    const Mat t = Mat(Vec3d(0, 0, 1));
     const MotionError e = compareMotion(a, t, b, t);
     EXPECT_NEAR(2.0, e.rotationDeg, 1e-7);
     EXPECT_NEAR(2.0 * std::sin(2.0 * CV_PI / 180.0 / 4.0), e.dq, 1e-9);
@@ -691,7 +691,7 @@ TEST(Rcme_Synthetic, compare_motion_is_insensitive_to_quaternion_sign)
 TEST(Rcme_Synthetic, compare_motion_accepts_float_and_row_vectors)
 {
     const Mat R = rotation(12.0, 0.0, 0.0, 1.0), Rgt = rotation(2.0, 0.0, 0.0, 1.0);
-    const Mat t = (Mat_<double>(3, 1) << 0, 1, 1), tgt = (Mat_<double>(3, 1) << 0, 0, 1);
+    const Mat t = Mat(Vec3d(0, 1, 1)), tgt = Mat(Vec3d(0, 0, 1));
     const MotionError ref = compareMotion(R, t, Rgt, tgt);
     Mat Rf, tf;
     R.convertTo(Rf, CV_32F);
@@ -708,17 +708,17 @@ TEST(Rcme_Synthetic, compare_motion_accepts_float_and_row_vectors)
 TEST(Rcme_Synthetic, compare_motion_bad_inputs_throw_naming_the_argument)
 {
     const Mat I = Mat::eye(3, 3, CV_64F);
-    const Mat t = (Mat_<double>(3, 1) << 0, 0, 1);
+    const Mat t = Mat(Vec3d(0, 0, 1));
     Mat nanR = I.clone();
     nanR.at<double>(1, 2) = std::numeric_limits<double>::quiet_NaN();
-    const Mat reflection = (Mat_<double>(3, 3) << 1, 0, 0, 0, 1, 0, 0, 0, -1);
+    const Mat reflection = Mat(Matx33d(1, 0, 0, 0, 1, 0, 0, 0, -1));
     const Mat scaled = I * 2.0;
     const Mat intR = Mat::eye(3, 3, CV_32S);
     const Mat bad23 = Mat::zeros(2, 3, CV_64F);
     const Mat zero = Mat::zeros(3, 1, CV_64F);
-    const Mat four = (Mat_<double>(4, 1) << 0, 0, 1, 0);
+    const Mat four = Mat(Vec4d(0, 0, 1, 0));
     const Mat t33 = Mat::eye(3, 3, CV_64F);
-    const Mat infT = (Mat_<double>(3, 1) << 0, std::numeric_limits<double>::infinity(), 1);
+    const Mat infT = Mat(Vec3d(0, std::numeric_limits<double>::infinity(), 1));
 
     for (const Mat* bad : {(const Mat*)&nanR, &reflection, &scaled, &intR, &bad23}) {
         expectBadArg([&] { compareMotion(*bad, t, I, t); }, "compareMotion: R ");

@@ -7,7 +7,7 @@
 #ifndef OPENCV_RCME_FUZZ_INPUT_HPP
 #define OPENCV_RCME_FUZZ_INPUT_HPP
 
-#include <opencv2/calib3d.hpp>
+#include "opencv2/rcme/opencv_geometry.hpp"
 #include <opencv2/rcme/params.hpp>
 
 // The library's list of the Method values (src/ is on the fuzz targets' include path).

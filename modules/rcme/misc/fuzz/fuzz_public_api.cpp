@@ -157,11 +157,11 @@ Mat makeCameraMatrix(const FuzzCase& c)
         return Mat();
     case 1:
     case 2:
-        K = (Mat_<double>(3, 3) << c.fx, c.skew, c.cx, 0, c.fy, c.cy, 0, 0, 1);
+        K = Mat(Matx33d(c.fx, c.skew, c.cx, 0, c.fy, c.cy, 0, 0, 1));
         break;
     case 3: // a general 3x3 matrix, last row included
-        K = (Mat_<double>(3, 3) << c.fx, c.skew, c.cx, c.sigma, c.fy, c.cy, c.alpha, c.threshold,
-             c.confidence);
+        K = Mat(
+            Matx33d(c.fx, c.skew, c.cx, c.sigma, c.fy, c.cy, c.alpha, c.threshold, c.confidence));
         break;
     default:
         K = Mat(3, 4, CV_64F, Scalar(c.fx));

@@ -19,7 +19,7 @@
 #include "geometry/motion_parameterization.hpp"
 #include "geometry/statistics.hpp"
 
-#include <opencv2/calib3d.hpp>
+#include "opencv2/rcme/opencv_geometry.hpp"
 
 #include <algorithm>
 

@@ -4,8 +4,7 @@
 #ifndef OPENCV_RCME_PARAMS_HPP
 #define OPENCV_RCME_PARAMS_HPP
 
-#include <opencv2/calib3d.hpp>
-#include <opencv2/core.hpp>
+#include "opencv2/rcme/opencv_geometry.hpp"
 
 namespace cv {
 namespace rcme {
