@@ -33,6 +33,29 @@ def _all_outliers(seed, points=300):
                 np.eye(3), np.zeros(3), labels=np.zeros(points, bool), sigma=1.0)
 
 
+def _normalized_with_gross_outliers(seed, points=60):
+    """Points in normalized coordinates (K = I, the noise and the threshold in those units), as
+    many VO programs pass them: a generic scene's true matches with three gross outliers, one
+    far off every image ((0, 0) to (1000, 1000)) and two mismatches inside the view."""
+    params = scene_params(points, 1.0, 1.0, seed)
+    params.kind = rcme.SCENE_GENERIC
+    scene = rcme.generateScene(params)
+    K = np.asarray(scene.cameraMatrix)
+    centre, focal = K[:2, 2], K[0, 0]
+    p1 = (np.asarray(scene.points1) - centre) / focal
+    p2 = (np.asarray(scene.points2) - centre) / focal
+    rng = np.random.default_rng(seed)
+    half = np.array([IMAGE_W, IMAGE_H]) / (2 * focal)
+    inside1 = rng.uniform(-half, half, (2, 2))
+    inside2 = rng.uniform(-half, half, (2, 2))
+    p1 = np.vstack([p1, [[0.0, 0.0]], inside1])
+    p2 = np.vstack([p2, [[1000.0, 1000.0]], inside2])
+    labels = np.concatenate([np.asarray(scene.inlierMask).ravel() > 0, np.zeros(3, bool)])
+    return Pair("hard: normalized coordinates", "normalized K = I seed %d" % seed, p1, p2,
+                np.eye(3), np.asarray(scene.R), np.asarray(scene.t).reshape(3), labels=labels,
+                sigma=1.0 / focal)
+
+
 def hard_case_pairs(seeds, first=0):
     """Every case of the suite for seeds first..first+seeds-1 (the benchmark's start at 0)."""
     pairs = []
@@ -55,5 +78,7 @@ def hard_case_pairs(seeds, first=0):
             # t_gt is zero: no returned motion is right
             _generated("pure rotation", seed, 1.0, kind=rcme.SCENE_PURE_ROTATION),
             _all_outliers(seed),
+            # issue 34: K = I with a gross outlier far off the image
+            _normalized_with_gross_outliers(seed),
         ]
     return pairs
