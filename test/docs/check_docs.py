@@ -34,6 +34,10 @@ EXTENSIONS = ("cpp", "hpp", "h", "py", "pyi", "sh", "md", "txt", "cmake", "inc",
 # the perf suite, a placeholder folder), which the pages name on purpose.
 NOT_OURS = re.compile(r"^(build[-\w]*/|<|~|/|\$|\.\./|\.\w|-)"    # generated, placeholders, options
                       r"|^(modules/(python|3d|geometry)\b|3rdparty/|CMakeDownloadLog\.txt$)"  # OpenCV's tree
+                      r"|^(opencv|opencv_contrib)/$"               # the sdist's two trees
+                      r"|^(opencv2/)?(opencv_modules|core|ts|geometry|3d|calib3d|features2d"
+                      r"|features)\.hpp$"                          # OpenCV's headers
+                      r"|^rcmeConfig\.cmake$"                      # written by the install
                       r"|^(solver|call|parallel|score-per-point)/"  # perf suite benchmark names
                       r"|^[A-Z]+/"                                  # FOLDER/K.txt
                       r"|^__init__\.pyi$")                          # the stub the build writes
