@@ -25,7 +25,7 @@ FUZZ_SECONDS ?= 60
 export CCACHE_BASEDIR ?= $(CURDIR)
 export CCACHE_NOHASHDIR = 1
 
-.PHONY: demo test test-intree test-pip sanitize sanitize-thread fuzz build configure deps
+.PHONY: demo test test-intree test-opencv-install test-pip sanitize sanitize-thread fuzz build configure deps
 
 demo: build
 	$(BUILD_DIR)/bin/rcme_two_view_demo --method rcme --out $(BUILD_DIR)/demo/two_view_demo.png
@@ -54,6 +54,11 @@ test-pip: deps
 
 test-intree: deps
 	test/opencv_intree/build_opencv_with_rcme.sh --opencv $(OPENCV) --jobs $(JOBS)
+
+# The standalone build (ctest) and `pip install .` against the install tree of the in-tree
+# build of OPENCV (5.1 by default) instead of Debian's OpenCV.
+test-opencv-install: deps
+	test/opencv_install/run_against_opencv_install.sh --opencv $(OPENCV) --jobs $(JOBS)
 
 build: configure
 	cmake --build $(BUILD_DIR) -j$(JOBS)
