@@ -28,7 +28,7 @@ export CCACHE_BASEDIR ?= $(CURDIR)
 export CCACHE_NOHASHDIR = 1
 
 # make docs: the API reference (doc/Doxyfile) in $(BUILD_DIR)/doc/html; any doxygen warning fails it.
-.PHONY: demo docs test test-intree test-pip sanitize sanitize-thread fuzz build configure deps
+.PHONY: demo docs test test-intree test-opencv-install test-pip sanitize sanitize-thread fuzz build configure deps
 
 demo: build
 	$(BUILD_DIR)/bin/rcme_two_view_demo --method rcme --out $(BUILD_DIR)/demo/two_view_demo.png
@@ -65,6 +65,11 @@ test-pip: deps
 
 test-intree: deps
 	test/opencv_intree/build_opencv_with_rcme.sh --opencv $(OPENCV) --jobs $(JOBS)
+
+# The standalone build (ctest) and `pip install .` against the install tree of the in-tree
+# build of OPENCV (5.1 by default) instead of Debian's OpenCV.
+test-opencv-install: deps
+	test/opencv_install/run_against_opencv_install.sh --opencv $(OPENCV) --jobs $(JOBS)
 
 build: configure
 	cmake --build $(BUILD_DIR) -j$(JOBS)

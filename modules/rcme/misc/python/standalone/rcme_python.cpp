@@ -760,7 +760,7 @@ PYBIND11_MODULE(_rcme, m)
             try {
                 py::object type = py::reinterpret_borrow<py::object>(g_error);
                 py::object inst = type(e.what());
-                inst.attr("code") = e.code;
+                inst.attr("code") = static_cast<int>(e.code); // an enum type in OpenCV 5
                 inst.attr("err") = e.err;
                 inst.attr("func") = e.func;
                 inst.attr("file") = e.file;
