@@ -217,10 +217,12 @@ void expectOpenCVsAnswer(const Mat& opencvModel, const Mat& rcmeModel)
     ASSERT_EQ(rcmeModel.type(), CV_64F);
     for (int r = 0; r + 3 <= opencvModel.rows; r += 3) {
         const Mat a = opencvModel.rowRange(r, r + 3), b = rcmeModel.rowRange(r, r + 3);
-        if (std::abs(a.at<double>(2, 2) - 1) < 1e-9)
+        if (std::abs(a.at<double>(2, 2) - 1) < 1e-9) {
             EXPECT_NEAR(b.at<double>(2, 2), 1.0, 1e-9) << r;
-        if (std::abs(cv::norm(a) - 1) < 1e-9)
+        }
+        if (std::abs(cv::norm(a) - 1) < 1e-9) {
             EXPECT_NEAR(cv::norm(b), 1.0, 1e-9) << r;
+        }
     }
 }
 
@@ -815,7 +817,8 @@ TEST(Rcme_OpenCVParity, few_consistent_points_give_opencvs_answer)
                 for (int method : {int(RANSAC), int(LMEDS)}) {
                     SCOPED_TRACE(method);
                     Mat maskCv, maskRc;
-                    const Mat Ecv = cv::findEssentialMat(p1, p2, K, method, 0.999, 1.0, maskCv);
+                    const Mat Ecv =
+                        cv::findEssentialMat(p1, p2, K, method, 0.999, 1.0, 1000, maskCv);
                     const Mat Erc =
                         cv::rcme::findEssentialMat(p1, p2, K, method, 0.999, 1.0, maskRc);
                     if (Ecv.empty())
@@ -1067,7 +1070,7 @@ TEST(Rcme_OpenCVParity, the_mask_marks_inliers_by_opencvs_distance)
         SCOPED_TRACE(form.name);
         Mat cvMask, rcMask, cvModel, rcModel;
         if (form.calibrated) {
-            cvModel = cv::findEssentialMat(p1, p2, K, form.method, 0.999, threshold, cvMask);
+            cvModel = cv::findEssentialMat(p1, p2, K, form.method, 0.999, threshold, 1000, cvMask);
             rcModel = cv::rcme::findEssentialMat(p1, p2, K, form.method, 0.999, threshold, rcMask);
         } else {
             cvModel = cv::findFundamentalMat(p1, p2, form.method, threshold, 0.99, cvMask);
@@ -1155,7 +1158,8 @@ TEST(Rcme_OpenCVParity, gross_outliers_in_normalized_coordinates_leave_the_motio
                     return compareMotion(Re, te, R, t);
                 };
                 Mat maskCv, maskRc;
-                const Mat Ecv = cv::findEssentialMat(p1, p2, I, RANSAC, 0.999, threshold, maskCv);
+                const Mat Ecv =
+                    cv::findEssentialMat(p1, p2, I, RANSAC, 0.999, threshold, 1000, maskCv);
                 if (Ecv.empty() || error(Ecv).rotationDeg > 2 || error(Ecv).translationDeg > 10)
                     continue;
                 ++compared;
