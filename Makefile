@@ -33,8 +33,8 @@ export CCACHE_NOHASHDIR = 1
 demo: build
 	$(BUILD_DIR)/bin/rcme_two_view_demo --method rcme --out $(BUILD_DIR)/demo/two_view_demo.png
 
-# Every part in order (packages, Release build, ctest, pip, ASan + UBSan, TSan, fuzzing, in-tree),
-# ending with a table of the parts and their wall times (test/run_test_parts.sh).
+# Every part in order (packages, Release build, ctest, make docs, pip, ASan + UBSan, TSan, fuzzing,
+# in-tree OpenCV 5.1), ending with a table of the parts and their wall times (test/run_test_parts.sh).
 test:
 	BUILD_DIR=$(BUILD_DIR) JOBS=$(JOBS) FUZZ_SECONDS=$(FUZZ_SECONDS) INTREE=$(INTREE) \
 	  OPENCV=$(OPENCV) MAKE="$(MAKE)" test/run_test_parts.sh
