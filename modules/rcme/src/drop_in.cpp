@@ -11,7 +11,7 @@
 
 #include "drop_in/agreeing_points.hpp"
 #include "drop_in/opencv_inlier_mask.hpp"
-#include "framework/two_view_data.hpp"
+#include "framework/two_view_input.hpp"
 #include "geometry/epipolar.hpp"
 
 #include <opencv2/core/eigen.hpp>

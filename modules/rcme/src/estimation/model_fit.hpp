@@ -4,7 +4,7 @@
 #ifndef OPENCV_RCME_ESTIMATION_MODEL_FIT_HPP
 #define OPENCV_RCME_ESTIMATION_MODEL_FIT_HPP
 
-#include "framework/components.hpp"
+#include "framework/model.hpp"
 
 #include <vector>
 

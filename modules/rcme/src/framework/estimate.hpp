@@ -10,6 +10,7 @@
 // StageOutcome.
 
 #include "framework/model.hpp"
+#include "framework/two_view_input.hpp"
 
 #include <limits>
 #include <optional>

@@ -4,6 +4,7 @@
 // Input checking: every malformed argument is reported by name before any estimation starts.
 
 #include "framework/two_view_data.hpp"
+#include "framework/two_view_input.hpp"
 #include "geometry/statistics.hpp"
 
 namespace cv {

@@ -4,8 +4,9 @@
 #ifndef OPENCV_RCME_FRAMEWORK_TWO_VIEW_DATA_HPP
 #define OPENCV_RCME_FRAMEWORK_TWO_VIEW_DATA_HPP
 
-#include "params_check.hpp"
-#include "precomp.hpp"
+// Not the public headers: the geometry, the fits and the model need none of Params (see
+// framework/two_view_input.hpp), and a change there then does not recompile them.
+#include "geometry/core.hpp"
 
 namespace cv {
 namespace rcme {
@@ -76,13 +77,6 @@ bool readCameraMatrix(InputArray cameraMatrix, const char* argName, Eigen::Matri
 
 //! Builds K from OpenCV's focal length / principal point form; throws naming "focal" or "pp".
 Eigen::Matrix3d cameraMatrixFromFocal(double focal, Point2d pp);
-
-//! Validates and assembles the problem; throws as readPoints/readCameraMatrix/validateParams.
-TwoViewData makeTwoViewData(InputArray points1, InputArray points2, InputArray cameraMatrix,
-                            const Params& params);
-
-//! The inlier threshold in pixels: Params::threshold, or 1.96 sigma when that is <= 0.
-double inlierThreshold(const Params& params);
 
 //! Width and height of the points' bounding box.
 Eigen::Vector2d boundingBoxSize(const std::vector<Eigen::Vector2d>& points);

@@ -8,7 +8,7 @@
 // refinement (and by the uncertainty propagation): the 5-DoF motion when K is known, the 7-DoF
 // fundamental matrix otherwise. Each gives F at an increment theta and dF/dtheta at theta = 0.
 
-#include "precomp.hpp"
+#include "geometry/core.hpp"
 
 namespace cv {
 namespace rcme {

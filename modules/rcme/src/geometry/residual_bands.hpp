@@ -4,7 +4,7 @@
 #ifndef OPENCV_RCME_GEOMETRY_RESIDUAL_BANDS_HPP
 #define OPENCV_RCME_GEOMETRY_RESIDUAL_BANDS_HPP
 
-#include "precomp.hpp"
+#include "geometry/core.hpp"
 
 namespace cv {
 namespace rcme {

@@ -3,7 +3,7 @@
 
 #include "geometry/statistics.hpp"
 
-#include "precomp.hpp"
+#include "geometry/core.hpp"
 
 namespace cv {
 namespace rcme {
