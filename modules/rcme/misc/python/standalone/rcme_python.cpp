@@ -62,10 +62,22 @@ struct InMat
     bool isCallers = false; //!< keep is the caller's own array (so writes reach the caller)
 };
 
+// A dtype's kind and size read through Python: pybind11 before 2.12 (Debian 12 has 2.10) reads
+// them from NumPy 1's descriptor struct, whose layout NumPy 2 changed (the size read garbage).
+char dtypeKind(const py::dtype& dt)
+{
+    return py::cast<std::string>(dt.attr("kind"))[0];
+}
+
+py::ssize_t dtypeSize(const py::dtype& dt)
+{
+    return py::cast<py::ssize_t>(dt.attr("itemsize"));
+}
+
 int depthOf(const py::dtype& dt)
 {
-    const char kind = dt.kind();
-    const auto size = dt.itemsize();
+    const char kind = dtypeKind(dt);
+    const auto size = dtypeSize(dt);
     if (kind == 'f')
         return size == 8 ? CV_64F : size == 4 ? CV_32F : size == 2 ? CV_16F : -1;
     if (kind == 'u')
@@ -94,10 +106,11 @@ std::string dtypeName(const py::dtype& dt)
 //! The dtype the array is converted to before wrapping, or an empty string when unsupported.
 std::string targetDtype(const py::dtype& dt, Conv conv)
 {
-    const char kind = dt.kind();
+    const char kind = dtypeKind(dt);
     if (conv == Conv::Float) {
-        if (kind == 'f' && (dt.itemsize() == 8 || dt.itemsize() == 4))
-            return dt.itemsize() == 8 ? "float64" : "float32";
+        const auto size = dtypeSize(dt);
+        if (kind == 'f' && (size == 8 || size == 4))
+            return size == 8 ? "float64" : "float32";
         if (kind == 'f' || kind == 'i' || kind == 'u' || kind == 'b')
             return "float64";
         return "";
@@ -181,12 +194,15 @@ py::object fromMat(const cv::Mat& m)
 {
     if (!m.data)
         return py::none();
-    std::vector<py::ssize_t> shape;
+    py::list shape;
     for (int i = 0; i < m.dims; ++i)
-        shape.push_back(m.size[i]);
+        shape.append(m.size[i]);
     if (m.channels() > 1)
-        shape.push_back(m.channels());
-    py::array out(dtypeOf(m.depth()), shape);
+        shape.append(m.channels());
+    // Made by NumPy itself: pybind11 2.10's py::array(dtype, shape) computes the strides from
+    // NumPy 1's descriptor layout, wrong under NumPy 2 (see dtypeKind).
+    py::array out =
+        py::module_::import("numpy").attr("empty")(py::tuple(shape), dtypeOf(m.depth()));
     cv::Mat dst(m.dims, m.size.p, m.type(), out.mutable_data());
     m.copyTo(dst);
     return std::move(out);
