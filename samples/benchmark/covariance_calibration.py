@@ -237,14 +237,19 @@ def run_pairs(task_pairs, sigma):
     return rows, others
 
 
-def reliability_rows(rows, bins=3):
-    """Per dataset: pairs binned by predicted rotation std (per axis, RMS over the three), with
-    the RMS actual rotation error per axis in each bin."""
+RELIABILITY_BLOCKS = (("rotation", slice(0, 3)), ("translation direction", slice(3, 5)))
+
+
+def reliability_rows(rows, block, bins=3):
+    """Per dataset: pairs binned by the predicted standard deviation of the block (per axis, RMS
+    over its axes), with the RMS actual error per axis in each bin; and the per-pair points."""
     out, points = [], {}
+    name, axes = block
     for dataset in sorted({r["dataset"] for r in rows}):
         subset = [r for r in rows if r["dataset"] == dataset]
-        std = np.degrees(np.sqrt([np.trace(r["covariance"][:3, :3]) / 3 for r in subset]))
-        err = np.degrees([np.linalg.norm(r["theta"][:3]) / np.sqrt(3) for r in subset])
+        k = axes.stop - axes.start
+        std = np.degrees(np.sqrt([np.trace(r["covariance"][axes, axes]) / k for r in subset]))
+        err = np.degrees([np.linalg.norm(r["theta"][axes]) / np.sqrt(k) for r in subset])
         points[dataset] = (std, err)
         edges = np.quantile(std, np.linspace(0, 1, bins + 1))
         for b in range(bins):
@@ -252,7 +257,7 @@ def reliability_rows(rows, bins=3):
             if inside.any():
                 predicted = np.sqrt(np.mean(std[inside] ** 2))
                 actual = np.sqrt(np.mean(err[inside] ** 2))
-                out.append([dataset, "%.4f-%.4f" % (edges[b], edges[b + 1]),
+                out.append([dataset, name, "%.4f-%.4f" % (edges[b], edges[b + 1]),
                             str(int(inside.sum())), "%.4f" % predicted, "%.4f" % actual,
                             "%.1f" % (actual / predicted)])
     return out, points
@@ -491,13 +496,16 @@ def real_report(args, out_dir):
     lines.append(_markdown(["dataset", "split", "noise", "covariance"] + NEES_HEADER,
                            nees_table(rows, groups)))
     default = [r for r in rows if r["mode"] == NOISE_MODES[0][1] and r["candidate"] == REPORTED]
-    table, points = reliability_rows(default)
-    lines += ["\n### Reliability (default covariance)\n",
-              "Pairs binned by their predicted rotation standard deviation (per axis, RMS over "
-              "the three axes), against the RMS actual rotation error per axis; a calibrated "
-              "covariance has a ratio near 1.\n",
-              _markdown(["dataset", "predicted std bin, deg", "pairs", "predicted std, deg",
-                         "actual error, deg", "ratio"], table)]
+    for _, mode in NOISE_MODES:
+        reported = [r for r in rows if r["mode"] == mode and r["candidate"] == REPORTED]
+        table = sum((reliability_rows(reported, block)[0] for block in RELIABILITY_BLOCKS), [])
+        lines += ["\n### Reliability, %s\n" % mode,
+                  "Pairs binned by their predicted standard deviation (per axis, RMS over the "
+                  "block's axes), against the RMS actual error per axis; a calibrated covariance "
+                  "has a ratio near 1.\n",
+                  _markdown(["dataset", "block", "predicted std bin, deg", "pairs",
+                             "predicted std, deg", "actual error, deg", "ratio"], table)]
+    points = reliability_rows(default, RELIABILITY_BLOCKS[0])[1]
     plot = os.path.join(out_dir, "covariance_reliability.png")
     plots.reliability_scatter(plot, "rotation: predicted std against actual error, per axis "
                               "(default covariance)", points)

@@ -97,7 +97,7 @@ def grouped_bars(path, title, groups, methods, values, y_label, max_value=None):
     cv2.imwrite(path, image)
 
 
-def reliability_scatter(path, title, points_by_group):
+def reliability_scatter(path, title, points_by_group, unit="deg"):
     """Log-log scatter, one colour per group: x the predicted standard deviation of a run, y its
     actual error (same unit); the diagonal y = x is where a calibrated covariance scatters."""
     width, height = 1000, 700
@@ -115,7 +115,7 @@ def reliability_scatter(path, title, points_by_group):
                 int(height - BOTTOM - v * (height - TOP - BOTTOM)))
 
     ticks = [(10 ** e, "%g" % 10 ** e) for e in np.arange(np.log10(low), np.log10(high) + 0.5)]
-    _axes(image, ticks, ticks, to_px, "predicted std", "actual error")
+    _axes(image, ticks, ticks, to_px, "predicted std, " + unit, "actual error, " + unit)
     cv2.line(image, to_px(low, low), to_px(high, high), (0, 0, 0), 1, cv2.LINE_AA)
     for k, (x, y) in enumerate(points_by_group.values()):
         for a, b in zip(x, y):
