@@ -89,14 +89,20 @@ def _fit_fundamental(a, b):
     return F[:3] if F is not None else None
 
 
-def sampson_distance(F, p1, p2):
-    """Sampson distance (pixels) of x2^T F x1 = 0 for (N, 2) point arrays."""
+def sampson_residual(F, p1, p2):
+    """Signed Sampson distance (pixels) of x2^T F x1 = 0 for (N, 2) point arrays: the algebraic
+    residual over the norm of its gradient in (x1, x2)."""
     x1 = np.hstack([p1, np.ones((len(p1), 1))])
     x2 = np.hstack([p2, np.ones((len(p2), 1))])
     Fx1, Ftx2 = x1 @ F.T, x2 @ F
     algebraic = np.sum(x2 * Fx1, axis=1)
     norm = Fx1[:, 0] ** 2 + Fx1[:, 1] ** 2 + Ftx2[:, 0] ** 2 + Ftx2[:, 1] ** 2
-    return np.abs(algebraic) / np.sqrt(np.maximum(norm, 1e-300))
+    return algebraic / np.sqrt(np.maximum(norm, 1e-300))
+
+
+def sampson_distance(F, p1, p2):
+    """Sampson distance (pixels) of x2^T F x1 = 0 for (N, 2) point arrays."""
+    return np.abs(sampson_residual(F, p1, p2))
 
 
 def magsac_pairs(folder):

@@ -95,3 +95,30 @@ def grouped_bars(path, title, groups, methods, values, y_label, max_value=None):
                     cv2.LINE_AA)
     _legend(image, methods)
     cv2.imwrite(path, image)
+
+
+def reliability_scatter(path, title, points_by_group, unit="deg"):
+    """Log-log scatter, one colour per group: x the predicted standard deviation of a run, y its
+    actual error (same unit); the diagonal y = x is where a calibrated covariance scatters."""
+    width, height = 1000, 700
+    image = _canvas(width, height, title)
+    values = np.concatenate([np.r_[x, y] for x, y in points_by_group.values()] or [[1e-3, 1]])
+    values = values[values > 0]
+    low = 10 ** np.floor(np.log10(values.min()))
+    high = 10 ** np.ceil(np.log10(values.max()))
+    decades = np.log10(high / low)
+
+    def to_px(x, y):
+        u = np.log10(max(x, low) / low) / decades
+        v = np.log10(max(y, low) / low) / decades
+        return (int(LEFT + u * (width - LEFT - RIGHT)),
+                int(height - BOTTOM - v * (height - TOP - BOTTOM)))
+
+    ticks = [(10 ** e, "%g" % 10 ** e) for e in np.arange(np.log10(low), np.log10(high) + 0.5)]
+    _axes(image, ticks, ticks, to_px, "predicted std, " + unit, "actual error, " + unit)
+    cv2.line(image, to_px(low, low), to_px(high, high), (0, 0, 0), 1, cv2.LINE_AA)
+    for k, (x, y) in enumerate(points_by_group.values()):
+        for a, b in zip(x, y):
+            cv2.circle(image, to_px(a, b), 4, PALETTE[k % len(PALETTE)], -1, cv2.LINE_AA)
+    _legend(image, list(points_by_group))
+    cv2.imwrite(path, image)

@@ -210,10 +210,6 @@ void leastSquares(const TwoViewData& data, const std::vector<int>& inliers, Prob
         finishOnEveryPoint(data, inliers, problem, maxIterations);
 }
 
-// Fewest residual degrees of freedom (inliers minus the model's) for the estimated noise to
-// replace the stated sigma: from 30 on, the estimate's relative standard error is below ~15 %.
-constexpr int kMinNoiseDof = 30;
-
 // Which covariance a fit gets: the stated sigma's sigma^2 (J^T J)^-1 (a hypothesis, a minimal
 // sample: the paper's Sigma_p), or the final estimate's (see finalUncertainty).
 enum class Uncertainty
@@ -275,9 +271,8 @@ void setFinalUncertainty(const TwoViewData& data, const std::vector<int>& indice
                 : std::numeric_limits<double>::quiet_NaN();
     if (model.uncertaintyDof == 0)
         return;
-    const bool useEstimate =
-        data.useEstimatedNoise && dof >= kMinNoiseDof && std::isfinite(model.noiseSigma);
-    const double sigma = useEstimate ? model.noiseSigma : data.sigma;
+    const double sigma =
+        usesEstimatedNoise(data, model.noiseSigma, dof) ? model.noiseSigma : data.sigma;
     model.covariance *=
         sigma * sigma / (data.sigma * data.sigma * truncatedNormalVariance(data.threshold / sigma));
 }
@@ -388,6 +383,15 @@ bool fitModel(const TwoViewData& data, const std::vector<int>& indices, int maxI
 }
 
 } // namespace
+
+// Fewest residual degrees of freedom (inliers minus the model's) for the estimated noise to
+// replace the stated sigma: from 30 on, the estimate's relative standard error is below ~15 %.
+constexpr int kMinNoiseDof = 30;
+
+bool usesEstimatedNoise(const TwoViewData& data, double noiseSigma, int residualDof)
+{
+    return data.useEstimatedNoise && residualDof >= kMinNoiseDof && std::isfinite(noiseSigma);
+}
 
 bool fitModelOn(const TwoViewData& data, const std::vector<int>& indices, int maxIterations,
                 Model& model)

@@ -26,6 +26,11 @@ Report::covariance). */
 bool fitFinalModelOn(const TwoViewData& data, const std::vector<int>& indices, int maxIterations,
                      Model& model, std::vector<int>& confirmed);
 
+/** Whether the final estimate's covariance is computed with the noise estimated from its
+residuals (`noiseSigma`, Model::noiseSigma) rather than the stated sigma: Params::useEstimatedNoise
+and at least 30 residual degrees of freedom (inliers minus the model's). */
+bool usesEstimatedNoise(const TwoViewData& data, double noiseSigma, int residualDof);
+
 } // namespace detail
 } // namespace rcme
 } // namespace cv

@@ -86,6 +86,9 @@ std::unique_ptr<EstimationStage> createHomographyDegeneracyTest();
 std::unique_ptr<EstimationStage> createFinalFit();
 //! Params::ambiguityMargin (> 0), calibrated data; needs EstimatorComponents::tracksRivals.
 std::unique_ptr<EstimationStage> createRivalMotionDecision(double margin);
+/** Params::useEstimatedNoise, calibrated data: the reported covariance raised to the final
+inliers' residual-based (sandwich) one where it exceeds it (residual_covariance.cpp). */
+std::unique_ptr<EstimationStage> createResidualCovariance();
 //! Params::maxRotationStdDeg, maxTranslationStdDeg (each <= 0: off), calibrated data.
 std::unique_ptr<EstimationStage> createUncertaintyBound(double maxRotationStdDeg,
                                                         double maxTranslationStdDeg);

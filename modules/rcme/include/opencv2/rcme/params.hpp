@@ -237,10 +237,13 @@ struct CV_EXPORTS_W_SIMPLE Params
     /** The uncertainty test, with a camera matrix and refinement: a motion whose rotation
     standard deviation about an axis (Report::rotationStdDeg) exceeds this many degrees gives
     #STATUS_UNDETERMINED_MOTION. <= 0 disables it. Default 4 deg, chosen with inner sampling's
-    trigger on synthetic scenes (doc/experiments_archive.md); the paper's experiments: 0. */
+    trigger on synthetic scenes (doc/experiments_archive.md); the paper's experiments: 0. The
+    bound applies to the model-based standard deviation, before Report::covariance is raised to
+    the residuals' sandwich, so a success's Report::rotationStdDeg can exceed it. */
     CV_PROP_RW double maxRotationStdDeg;
     /** The same for the translation direction (Report::translationStdDeg), degrees. <= 0
-    disables it. Default 8 deg, chosen with maxRotationStdDeg; the paper's experiments: 0. */
+    disables it. Default 8 deg, chosen with maxRotationStdDeg; the paper's experiments: 0. As
+    maxRotationStdDeg, it bounds the model-based standard deviation. */
     CV_PROP_RW double maxTranslationStdDeg;
     /** For #SAMPLER_PROSAC: one score per correspondence, higher is better (e.g. the negated
     ratio of the two best descriptor distances), CV_32F or CV_64F. Empty (default): the points
@@ -300,7 +303,11 @@ struct CV_EXPORTS_W_SIMPLE Report
     them): sigma^2 / h(c / sigma) (J^T J)^-1,
     with sigma the noise chosen by Params::useEstimatedNoise, c the inlier threshold and h(k) =
     E[z^2 | |z| < k] (the fit sees only residuals inside the band; 1 / h = 1.32 at 1.96 sigma).
-    Its calibration is measured in doc/results.md. poseCovariance converts it to a 6x6 (rotation,
+    With the estimated noise it is then raised to the inliers' residual-based (sandwich)
+    covariance A^-1 S A^-1 n / (n - 5) / h^2, A = J^T J, S = sum d_i^2 g_i^T g_i, along the
+    directions where that exceeds it by more than its sampling noise (real matches' noise differs
+    from point to point). Its calibration, and what it can be trusted for, is measured in
+    doc/covariance.md. poseCovariance converts it to a 6x6 (rotation,
     translation) covariance. With #STATUS_PURE_ROTATION, 3x3: the rotation increment's alone
     (R exp([omega]x)), since t is not determined. */
     CV_PROP_RW Mat covariance;
