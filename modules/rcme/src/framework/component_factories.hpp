@@ -86,6 +86,8 @@ std::unique_ptr<EstimationStage> createHomographyDegeneracyTest();
 std::unique_ptr<EstimationStage> createFinalFit();
 //! Params::ambiguityMargin (> 0), calibrated data; needs EstimatorComponents::tracksRivals.
 std::unique_ptr<EstimationStage> createRivalMotionDecision(double margin);
+//! After the rival motion decision: the same rivals weighed at the data's measured noise.
+std::unique_ptr<EstimationStage> createRivalSelectionAtDataNoise();
 //! Params::maxRotationStdDeg, maxTranslationStdDeg (each <= 0: off), calibrated data.
 std::unique_ptr<EstimationStage> createUncertaintyBound(double maxRotationStdDeg,
                                                         double maxTranslationStdDeg);
