@@ -74,6 +74,7 @@ public:
                 gap = std::min(gap, (costs[m] - costs[best]) / (data.sigma * data.sigma));
         const double rivalCostGap = std::max(0.0, gap);
         outcome.rivalCostGap = rivalCostGap;
+        outcome.weighedMotions = std::move(motions);
         if (rivalCostGap < margin_)
             outcome.verdict = Verdict{
                 STATUS_UNDETERMINED_MOTION,

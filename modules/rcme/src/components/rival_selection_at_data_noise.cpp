@@ -82,9 +82,16 @@ public:
             truncatedCost(data, estimate.model.F, capSquared) - kRequiredGain * measured * measured;
         const double noiseBound =
             estimate.planar ? kRivalNoiseShare * bandNoise(data, estimate.model.F) : 0.0;
+        // The rival decision's refitted motions when it ran (not on a plane's motion).
+        std::vector<Model> rivals =
+            estimate.weighedMotions.empty()
+                ? refittedRivalMotions(data, context.search.rivals, estimate.model,
+                                       estimate.score.inlierCount)
+                : estimate.weighedMotions;
         std::optional<Model> best;
-        for (Model& rival : refittedRivalMotions(data, context.search.rivals, estimate.model,
-                                                 estimate.score.inlierCount)) {
+        for (Model& rival : rivals) {
+            if (!areDistinctMotions(rival, estimate.model))
+                continue;
             const double cost = truncatedCost(data, rival.F, capSquared);
             if (cost < bestCost && (!estimate.planar || bandNoise(data, rival.F) <= noiseBound)) {
                 bestCost = cost;
