@@ -22,6 +22,14 @@ clean KITTI frames rcme never reports PQI (doc/results.md); with bad frames it d
 re-selects, while OpenCV accepts the wrong motion. The degenerate status (Params::degeneracyTest,
 --no-degeneracy-test turns it off) fires on some highway pairs of KITTI 01.
 
+--front-end klt is the classic front end of OpenCV-based VO programs instead: every frame, FAST
+corners of the reference frame tracked into it by pyramidal KLT (kept when the backward track
+returns within 1 px), no parallax gate. The reference is the last frame whose motion was
+accepted: when rcme flags a pair (any status but success) the frame is held, the reference is
+kept and the next frame is tried against it, so the held frame's motion is not lost but
+absorbed by the next pair. The held frames are listed and marked on the ground truth in the
+picture; OpenCV, without a failure signal, accepts every pair.
+
 If no candidate of the window can be accepted (or the matches run out), the track is bridged:
 the first keyframe moves to the last tried frame with the previous accepted rotation and
 translation direction (constant motion) and the gap is counted.
@@ -47,6 +55,7 @@ folder); 3 error raised by the library.
 #include <opencv2/imgproc.hpp>
 #include <opencv2/rcme.hpp>
 #include <opencv2/rcme/opencv_geometry.hpp> // cv::findEssentialMat & co.
+#include <opencv2/video/tracking.hpp>       // calcOpticalFlowPyrLK
 
 #include <algorithm>
 #include <cmath>
@@ -99,14 +108,22 @@ void printUsage(const char* argv0)
         << "  --max-reselect N    later frames tried after a rejected pair (default 5)\n"
         << "  --min-matches N     fewer matches end the keyframe search (default 60)\n"
         << "  --features N        SIFT features per frame (default 3000)\n"
+        << "  --front-end F       sift (keyframes, default) or klt: every frame, FAST corners of\n"
+        << "                      the reference tracked by KLT; a flagged frame is held and the\n"
+        << "                      reference kept for the next one\n"
         << "  --bad-frames LIST   comma-separated frames whose matches are re-paired at random,\n"
         << "                      simulating unusable frames (default: none)\n"
+        << "  --stale-frames LIST comma-separated frames delivered as a stale copy of the frame\n"
+        << "                      before (a camera that repeated its last image: no motion)\n"
         << "  --opencv-threshold PX  findEssentialMat's threshold (default 1, OpenCV's default)\n"
         << "  --opencv-prob P     findEssentialMat's confidence (default 0.999)\n"
         << "  --no-degeneracy-test  accept pairs that a homography explains as well as F\n"
         << "                      (Params::degeneracyTest off)\n"
         << "  --no-opencv         skip the OpenCV run\n"
         << "  --out FILE          output PNG (default rcme_mono_vo.png)\n"
+        << "  --max-wrong-pairs K exit with 1 when rcme accepts more than K pairs whose rotation\n"
+        << "                      is more than 5 deg or translation direction more than 15 deg\n"
+        << "                      wrong\n"
         << "  --max-median-rotation-error-deg X\n"
         << "                      exit with 1 when rcme's median rotation error per keyframe\n"
         << "                      pair exceeds X degrees\n"
@@ -130,7 +147,10 @@ struct Options
     int maxReselect = 5;
     int minMatches = 60;
     int features = 3000;
+    bool klt = false; //!< --front-end klt
+    int maxWrongPairs = -1;
     std::vector<int> badFrames;
+    std::vector<int> staleFrames;
     double opencvThreshold = 1.0;
     double opencvProb = 0.999;
     bool runOpencv = true;
@@ -147,7 +167,8 @@ Options parseArgs(int argc, char** argv)
                           {"data", "sequence", "frames", "method", "solver", "sigma", "seed",
                            "min-parallax", "max-reselect", "min-matches", "features",
                            "opencv-threshold", "opencv-prob", "out", "bad-frames",
-                           "max-median-rotation-error-deg"},
+                           "max-median-rotation-error-deg", "front-end", "max-wrong-pairs",
+                           "stale-frames"},
                           {"no-opencv", "no-degeneracy-test", "verbose", "v"});
     Options opt;
     opt.help = cmd.help;
@@ -176,16 +197,23 @@ Options parseArgs(int argc, char** argv)
             opt.minMatches = parseInt(key, value);
         else if (key == "features")
             opt.features = parseInt(key, value);
+        else if (key == "front-end") {
+            if (value != "sift" && value != "klt")
+                throw UsageError("--front-end must be sift or klt, not '" + value + "'");
+            opt.klt = value == "klt";
+        } else if (key == "max-wrong-pairs")
+            opt.maxWrongPairs = parseInt(key, value);
         else if (key == "opencv-threshold")
             opt.opencvThreshold = parseDouble(key, value);
         else if (key == "opencv-prob")
             opt.opencvProb = parseDouble(key, value);
-        else if (key == "bad-frames") {
+        else if (key == "bad-frames" || key == "stale-frames") {
             std::stringstream list(value);
             std::string item;
             while (std::getline(list, item, ','))
                 if (!item.empty())
-                    opt.badFrames.push_back(parseInt(key, item));
+                    (key == "bad-frames" ? opt.badFrames : opt.staleFrames)
+                        .push_back(parseInt(key, item));
         } else if (key == "no-opencv")
             opt.runOpencv = false;
         else if (key == "no-degeneracy-test")
@@ -335,9 +363,10 @@ Sequence readSequence(const Options& opt)
 class FeatureCache
 {
 public:
-    FeatureCache(const Sequence& seq, int features, const std::vector<int>& badFrames)
+    FeatureCache(const Sequence& seq, int features, const std::vector<int>& badFrames,
+                 const std::vector<int>& staleFrames, bool klt)
         : seq_(seq), sift_(cv::SIFT::create(features)), frames_(seq.images.size()),
-          badFrames_(badFrames)
+          badFrames_(badFrames), staleFrames_(staleFrames), klt_(klt)
     {
     }
 
@@ -354,7 +383,8 @@ public:
             return it->second;
         const Frame &a = frame(i), &b = frame(j);
         PairMatches pm;
-        pm.matches = matchRatioTest(a.keypoints, a.descriptors, b.keypoints, b.descriptors);
+        pm.matches = klt_ ? trackCorners(a, b)
+                          : matchRatioTest(a.keypoints, a.descriptors, b.keypoints, b.descriptors);
         if (isBad(i) || isBad(j)) {
             // an unusable frame: every point keeps its position but gets a random partner
             cv::RNG rng(static_cast<uint64>(1000003) * i + j);
@@ -385,17 +415,56 @@ private:
         bool ready = false;
         std::vector<cv::KeyPoint> keypoints;
         cv::Mat descriptors;
+        cv::Mat image; //!< KLT tracks from it
     };
+
+    /* The front end of OpenCV-based VO examples (as samples/benchmark/vo_front_end.py): FAST
+    corners (threshold 20, non-maximum suppression) of `a` tracked into `b` by pyramidal KLT
+    (21x21, 3 levels, 30 iterations or 0.01 px) and back, kept when both tracks converge inside
+    the image and the backward one ends within 1 px of the corner. */
+    static Matches trackCorners(const Frame& a, const Frame& b)
+    {
+        constexpr double kMaxForwardBackwardPx = 1.0;
+        Matches m;
+        std::vector<cv::Point2f> corners, tracked, back;
+        cv::KeyPoint::convert(a.keypoints, corners);
+        if (corners.empty())
+            return m;
+        std::vector<uchar> found, foundBack;
+        std::vector<float> error;
+        const cv::Size window(21, 21);
+        const cv::TermCriteria stop(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, 30, 0.01);
+        cv::calcOpticalFlowPyrLK(a.image, b.image, corners, tracked, found, error, window, 3, stop);
+        cv::calcOpticalFlowPyrLK(b.image, a.image, tracked, back, foundBack, error, window, 3,
+                                 stop);
+        const cv::Rect inside(0, 0, b.image.cols, b.image.rows);
+        for (size_t k = 0; k < corners.size(); ++k)
+            if (found[k] && foundBack[k] && inside.contains(tracked[k]) &&
+                cv::norm(back[k] - corners[k]) < kMaxForwardBackwardPx) {
+                m.points1.push_back(corners[k]);
+                m.points2.push_back(tracked[k]);
+            }
+        return m;
+    }
 
     const Frame& frame(int i)
     {
         Frame& f = frames_[i];
         if (!f.ready) {
-            const cv::Mat img = cv::imread(seq_.images[i], cv::IMREAD_GRAYSCALE);
+            // a stale frame repeats the image before it
+            const bool stale = i > 0 && std::find(staleFrames_.begin(), staleFrames_.end(), i) !=
+                                            staleFrames_.end();
+            const std::string& path = seq_.images[stale ? i - 1 : i];
+            const cv::Mat img = cv::imread(path, cv::IMREAD_GRAYSCALE);
             if (img.empty())
-                throw UsageError("cannot read image '" + seq_.images[i] + "'");
+                throw UsageError("cannot read image '" + path + "'");
             featureTime_.start();
-            sift_->detectAndCompute(img, cv::noArray(), f.keypoints, f.descriptors);
+            if (klt_) {
+                cv::FastFeatureDetector::create(20, true)->detect(img, f.keypoints);
+                f.image = img;
+            } else {
+                sift_->detectAndCompute(img, cv::noArray(), f.keypoints, f.descriptors);
+            }
             featureTime_.stop();
             f.ready = true;
         }
@@ -407,7 +476,8 @@ private:
     std::vector<Frame> frames_;
     std::map<std::pair<int, int>, PairMatches> pairs_;
     cv::TickMeter featureTime_;
-    std::vector<int> badFrames_;
+    std::vector<int> badFrames_, staleFrames_;
+    bool klt_;
 };
 
 // ---------------------------------------------------------------------------------------------
@@ -534,11 +604,13 @@ VoRun runOdometry(const Sequence& seq, FeatureCache& cache, const Options& opt,
         run.keyframePoses.push_back(pose);
     };
 
+    // KLT: every frame is a candidate, the reference is the last accepted one
+    const double minParallax = opt.klt ? 0.0 : opt.minParallax;
     while (keyframe < n - 1) {
         int candidate = keyframe + 1;
         // first frame with enough parallax (or the last frame)
         while (candidate < n - 1 &&
-               cache.matches(keyframe, candidate).medianParallax < opt.minParallax &&
+               cache.matches(keyframe, candidate).medianParallax < minParallax &&
                static_cast<int>(cache.matches(keyframe, candidate).matches.points1.size()) >=
                    opt.minMatches)
             ++candidate;
@@ -553,7 +625,7 @@ VoRun runOdometry(const Sequence& seq, FeatureCache& cache, const Options& opt,
                           << " has " << numMatches << " matches, too few\n";
                 break; // later frames only have fewer
             }
-            if (pm.medianParallax < opt.minParallax && lastTried == keyframe) {
+            if (pm.medianParallax < minParallax && lastTried == keyframe) {
                 endOfSequence = true; // the sequence ended before there was enough parallax
                 break;
             }
@@ -564,7 +636,10 @@ VoRun runOdometry(const Sequence& seq, FeatureCache& cache, const Options& opt,
                 run.rejections.push_back({keyframe, candidate, est.verdict, est.status});
                 std::cout << "  " << label << ": keyframe pair " << keyframe << " -> " << candidate
                           << " rejected (" << est.verdict << ", " << numMatches
-                          << " matches), re-selecting\n";
+                          << (opt.klt ? " tracks): frame " + std::to_string(candidate) +
+                                            " held, reference " + std::to_string(keyframe) +
+                                            " kept for the next frame\n"
+                                      : std::string(" matches), re-selecting\n"));
                 continue;
             }
             const Pose truth = relativeGroundTruth(seq, keyframe, candidate);
@@ -656,6 +731,7 @@ Summary summarize(const Sequence& seq, const VoRun& run)
 
 const cv::Scalar kGroundTruthColor(40, 40, 40);
 const cv::Scalar kRejectionColor(0, 0, 220);
+const cv::Scalar kHeldColor(180, 0, 180);
 
 cv::Scalar runColor(size_t r)
 {
@@ -744,6 +820,9 @@ cv::Mat drawTopView(const Sequence& seq, const std::vector<const VoRun*>& runs, 
             if (it != run.keyframes.end())
                 cv::drawMarker(panel, at(run.keyframePoses[it - run.keyframes.begin()]),
                                kRejectionColor, cv::MARKER_TILTED_CROSS, 14, 2, cv::LINE_AA);
+            // the frame whose pair was turned down, on the ground truth: a held frame
+            cv::drawMarker(panel, at(seq.groundTruth[rej.second]), kHeldColor, cv::MARKER_DIAMOND,
+                           12, 2, cv::LINE_AA);
         }
     }
     cv::rectangle(panel, cv::Rect(0, 0, size, size), cv::Scalar::all(160));
@@ -806,7 +885,7 @@ cv::Mat drawTrajectories(const Sequence& seq, const std::vector<const VoRun*>& r
     cv::Mat plots;
     cv::hconcat(drawTopView(seq, runs, plotSize), drawErrorPlot(seq, runs, errorWidth, plotSize),
                 plots);
-    const int header = lineHeight * static_cast<int>(legend.size() + 3) + 8;
+    const int header = lineHeight * static_cast<int>(legend.size() + 4) + 8;
     cv::Mat canvas(header + plots.rows, plots.cols, CV_8UC3, cv::Scalar::all(255));
     plots.copyTo(canvas(cv::Rect(0, header, plots.cols, plots.rows)));
 
@@ -825,11 +904,34 @@ cv::Mat drawTrajectories(const Sequence& seq, const std::vector<const VoRun*>& r
     const int y = rowY(static_cast<int>(legend.size()) + 1);
     cv::drawMarker(canvas, cv::Point(25, y - 4), kRejectionColor, cv::MARKER_TILTED_CROSS, 12, 2,
                    cv::LINE_AA);
-    putLabel(canvas,
-             "keyframe whose next pair rcme rejected (PQI / degenerate) and re-selected; dots: "
-             "keyframes",
+    putLabel(canvas, "keyframe whose next pair rcme rejected and re-selected; dots: keyframes",
              cv::Point(48, y));
+    cv::drawMarker(canvas, cv::Point(25, y + lineHeight - 4), kHeldColor, cv::MARKER_DIAMOND, 12, 2,
+                   cv::LINE_AA);
+    putLabel(canvas,
+             "held frame (on the ground truth): its pair was rejected, the next frame was "
+             "tried from the same reference",
+             cv::Point(48, y + lineHeight));
     return canvas;
+}
+
+//! Accepted pairs whose rotation is more than 5 deg or translation direction more than 15 deg
+//! off the ground truth (wrong, as the benchmark counts them).
+int countWrongPairs(const VoRun& run)
+{
+    int count = 0;
+    for (const KeyframePair& p : run.pairs)
+        count += p.rotationErrorDeg > 5.0 || p.translationErrorDeg > 15.0;
+    return count;
+}
+
+//! The held frames of a run and the status that held each ("12 (undetermined motion)").
+std::string heldFrames(const VoRun& run)
+{
+    std::string list;
+    for (const Rejection& r : run.rejections)
+        list += (list.empty() ? "" : ", ") + std::to_string(r.second) + " (" + r.verdict + ")";
+    return list.empty() ? "none" : list;
 }
 
 //! Re-selections after rcme reported `status`; with no status, the re-selections for any other
@@ -864,9 +966,14 @@ int run(int argc, char** argv)
     std::cout << "sequence: " << seq.name << " (" << seq.folder << "), frames 0-" << n - 1 << "\n"
               << "camera: fx " << fixed(seq.K(0, 0), 3) << ", cx " << fixed(seq.K(0, 2), 3)
               << ", cy " << fixed(seq.K(1, 2), 3) << "\n"
-              << "keyframes: SIFT (" << opt.features
-              << " per frame) + ratio test 0.8, median parallax >= " << fixed(opt.minParallax, 1)
-              << " px, up to " << opt.maxReselect << " re-selections per keyframe\n"
+              << (opt.klt ? "frames: FAST corners of the reference tracked by KLT "
+                            "(forward-backward <= 1 px), every frame; a rejected frame is held, "
+                            "up to " +
+                                std::to_string(opt.maxReselect) + " per reference\n"
+                          : "keyframes: SIFT (" + std::to_string(opt.features) +
+                                " per frame) + ratio test 0.8, median parallax >= " +
+                                fixed(opt.minParallax, 1) + " px, up to " +
+                                std::to_string(opt.maxReselect) + " re-selections per keyframe\n")
               << "rcme: method " << opt.method << ", solver " << opt.solver << ", sigma "
               << opt.sigma << " px, degeneracy test " << (opt.degeneracyTest ? "on" : "off")
               << "; OpenCV: findEssentialMat RANSAC (threshold " << opt.opencvThreshold
@@ -875,10 +982,14 @@ int run(int argc, char** argv)
                                         : "simulated unusable frames (matches re-paired at "
                                           "random): " +
                                               std::to_string(opt.badFrames.size()) + "\n")
+              << (opt.staleFrames.empty() ? std::string()
+                                          : "simulated stale frames (a repeat of the frame "
+                                            "before): " +
+                                                std::to_string(opt.staleFrames.size()) + "\n")
               << "scale: each pair's translation is scaled by the ground-truth distance between "
                  "its frames (display only: monocular VO has no scale)\n";
 
-    FeatureCache cache(seq, opt.features, opt.badFrames);
+    FeatureCache cache(seq, opt.features, opt.badFrames, opt.staleFrames, opt.klt);
     const std::string rcmeLabel = "rcme " + opt.method;
     std::cout << "run 1: " << rcmeLabel << "\n";
     const VoRun rcmeRun = runOdometry(seq, cache, opt, rcmeLabel, rcmeEstimator(params));
@@ -917,6 +1028,8 @@ int run(int argc, char** argv)
     });
     row("other re-selections (no E, ...)",
         [&](size_t r) { return std::to_string(countRejections(*runs[r], std::nullopt)); });
+    row("accepted pairs wrong (R > 5, t > 15 deg)",
+        [&](size_t r) { return std::to_string(countWrongPairs(*runs[r])); });
     row("gaps bridged with the previous motion",
         [&](size_t r) { return std::to_string(runs[r]->bridgedGaps); });
     row("rotation error per pair, mean (deg)",
@@ -937,8 +1050,12 @@ int run(int argc, char** argv)
         [&](size_t r) { return fixed(summaries[r].medianMilliseconds, 1); });
     std::cout << rcmeLabel << " re-selected after PQI: " << pqiCount
               << ", after degenerate: " << degenerateCount << "\n";
-    std::cout << "features: " << fixed(cache.featureMilliseconds(), 0)
-              << " ms of SIFT, computed once for all runs\n";
+    std::cout << rcmeLabel << " held frames: " << rcmeRun.rejections.size() << ": "
+              << heldFrames(rcmeRun) << "\n";
+    std::cout << rcmeLabel << " accepted pairs more than 5 deg (rotation) or 15 deg (translation) "
+              << "wrong: " << countWrongPairs(rcmeRun) << " of " << rcmeRun.pairs.size() << "\n";
+    std::cout << "features: " << fixed(cache.featureMilliseconds(), 0) << " ms of "
+              << (opt.klt ? "FAST" : "SIFT") << ", computed once for all runs\n";
 
     std::vector<std::string> legend;
     for (size_t r = 0; r < runs.size(); ++r) {
@@ -960,6 +1077,11 @@ int run(int argc, char** argv)
 
     if (rcmeRun.pairs.empty()) {
         std::cout << "FAILED: rcme estimated no keyframe pair\n";
+        return EXIT_NOT_SUCCESS;
+    }
+    if (opt.maxWrongPairs >= 0 && countWrongPairs(rcmeRun) > opt.maxWrongPairs) {
+        std::cout << "FAILED: rcme accepted " << countWrongPairs(rcmeRun)
+                  << " wrong pairs, more than --max-wrong-pairs " << opt.maxWrongPairs << "\n";
         return EXIT_NOT_SUCCESS;
     }
     if (opt.maxMedianRotationErrorDeg >= 0 &&

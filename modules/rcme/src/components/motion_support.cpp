@@ -44,11 +44,14 @@ MotionSupport motionSupport(const TwoViewData& data, const Model& model, std::ve
 
 double truncatedCost(const TwoViewData& data, const Eigen::Matrix3d& F)
 {
-    const double thresholdSquared = data.threshold * data.threshold;
+    return truncatedCost(data, F, data.threshold * data.threshold);
+}
+
+double truncatedCost(const TwoViewData& data, const Eigen::Matrix3d& F, double capSquared)
+{
     double cost = 0.0;
     for (size_t i = 0; i < data.points1.size(); ++i)
-        cost +=
-            std::min(thresholdSquared, sampsonDistanceSquared(F, data.points1[i], data.points2[i]));
+        cost += std::min(capSquared, sampsonDistanceSquared(F, data.points1[i], data.points2[i]));
     return cost;
 }
 
@@ -65,6 +68,30 @@ MotionSupport refitOnOwnPoints(const TwoViewData& data, Model& motion, std::vect
             motion = fitted;
     }
     return motionSupport(data, motion, within, inFront);
+}
+
+std::vector<Model> refittedRivalMotions(const TwoViewData& data,
+                                        const std::vector<RivalMotions::Rival>& rivals,
+                                        const Model& selected, int selectedInliers)
+{
+    const TwoViewData subset = data.size() > static_cast<int>(kMaxIteratedPoints)
+                                   ? evenlySpacedSubset(data, kMaxIteratedPoints)
+                                   : TwoViewData();
+    const TwoViewData& fitData = subset.points1.empty() ? data : subset;
+    constexpr double kSupportShare = 0.5; // as RivalMotions' gate
+    std::vector<Model> motions;
+    std::vector<uchar> within, inFront;
+    for (const RivalMotions::Rival& rival : rivals) {
+        if (rival.score.inlierCount < kSupportShare * selectedInliers ||
+            !areDistinctMotions(rival.model, selected))
+            continue;
+        Model refitted = rival.model;
+        if (refitOnOwnPoints(fitData, refitted, within, inFront).support <= 0)
+            continue;
+        if (recoverMotion(fitData, within, refitted) && areDistinctMotions(refitted, selected))
+            motions.push_back(refitted);
+    }
+    return motions;
 }
 
 } // namespace detail

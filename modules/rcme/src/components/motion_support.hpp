@@ -9,6 +9,7 @@
 // test's, components/rival_motion_decision.cpp).
 
 #include "framework/model.hpp"
+#include "framework/rival_motions.hpp"
 
 #include <limits>
 #include <vector>
@@ -33,6 +34,8 @@ MotionSupport motionSupport(const TwoViewData& data, const Model& model, std::ve
 
 //! MSAC's cost of F: each point's squared Sampson distance, at most the squared threshold.
 double truncatedCost(const TwoViewData& data, const Eigen::Matrix3d& F);
+//! The same with each point's cost at most `capSquared` (pixels^2).
+double truncatedCost(const TwoViewData& data, const Eigen::Matrix3d& F, double capSquared);
 
 /** Refits a motion on the points within its own band, twice, and returns its fit, `within` and
 `inFront` as motionSupport leaves them for the refitted motion. Not on the selected model's
@@ -40,6 +43,16 @@ inliers: those pull every other motion towards the selected one (on a plane the 
 of a family). */
 MotionSupport refitOnOwnPoints(const TwoViewData& data, Model& motion, std::vector<uchar>& within,
                                std::vector<uchar>& inFront);
+
+/** The loop's rival motions (SearchResult::rivals) that are other answers than `selected`: those
+with at least half its support (`selectedInliers`; RivalMotions' own gate) and distinct from it,
+each refitted on the points it explains itself and its decomposition chosen again by cheirality
+on all the points of its band, as the selected model's was; a rival that is the selected motion
+again once refitted (forward motion, far points: a sample's few points chose -t) is left out.
+Refit and decomposition on an evenly spaced subset of a large problem (kMaxIteratedPoints). */
+std::vector<Model> refittedRivalMotions(const TwoViewData& data,
+                                        const std::vector<RivalMotions::Rival>& rivals,
+                                        const Model& selected, int selectedInliers);
 
 } // namespace detail
 } // namespace rcme

@@ -32,7 +32,6 @@ public:
     StageOutcome run(const StageContext& context, const Estimate& estimate) override
     {
         const TwoViewData& data = context.data;
-        constexpr double kSupportShare = 0.5; // as RivalMotions' gate
         if (!estimate.model.motion || estimate.planar)
             return {};
         // The cost is MSAC's, without the planar test's cheirality term: the depth sign of far
@@ -41,28 +40,15 @@ public:
         // rival's decomposition is chosen again by cheirality on all the points of its band, as the
         // selected model's was: a rival whose sample's few points chose -t (forward motion, far
         // points: on KITTI every rival within the margin was the selected motion with t reversed)
-        // is then the selected motion again, not an ambiguity. A rival's refit and its
-        // decomposition on a subset of a large problem; costs on every point.
-        const TwoViewData subset = data.size() > static_cast<int>(kMaxIteratedPoints)
-                                       ? evenlySpacedSubset(data, kMaxIteratedPoints)
-                                       : TwoViewData();
-        const TwoViewData& fitData = subset.points1.empty() ? data : subset;
+        // is then the selected motion again, not an ambiguity (refittedRivalMotions). Costs on
+        // every point.
         std::vector<Model> motions{estimate.model};
-        std::vector<double> costs{truncatedCost(data, estimate.model.F)};
-        std::vector<uchar> within, inFront;
-        for (const RivalMotions::Rival& rival : context.search.rivals) {
-            if (rival.score.inlierCount < kSupportShare * estimate.score.inlierCount ||
-                !areDistinctMotions(rival.model, estimate.model))
-                continue;
-            Model refitted = rival.model;
-            if (refitOnOwnPoints(fitData, refitted, within, inFront).support <= 0)
-                continue;
-            if (recoverMotion(fitData, within, refitted) &&
-                areDistinctMotions(refitted, estimate.model)) {
-                motions.push_back(refitted);
-                costs.push_back(truncatedCost(data, refitted.F));
-            }
-        }
+        for (Model& rival : refittedRivalMotions(data, context.search.rivals, estimate.model,
+                                                 estimate.score.inlierCount))
+            motions.push_back(std::move(rival));
+        std::vector<double> costs;
+        for (const Model& motion : motions)
+            costs.push_back(truncatedCost(data, motion.F));
         size_t best = 0;
         for (size_t m = 1; m < motions.size(); ++m)
             if (costs[m] < costs[best])
@@ -88,6 +74,7 @@ public:
                 gap = std::min(gap, (costs[m] - costs[best]) / (data.sigma * data.sigma));
         const double rivalCostGap = std::max(0.0, gap);
         outcome.rivalCostGap = rivalCostGap;
+        outcome.weighedMotions = std::move(motions);
         if (rivalCostGap < margin_)
             outcome.verdict = Verdict{
                 STATUS_UNDETERMINED_MOTION,

@@ -86,6 +86,8 @@ std::unique_ptr<EstimationStage> createHomographyDegeneracyTest();
 std::unique_ptr<EstimationStage> createFinalFit();
 //! Params::ambiguityMargin (> 0), calibrated data; needs EstimatorComponents::tracksRivals.
 std::unique_ptr<EstimationStage> createRivalMotionDecision(double margin);
+//! After the rival motion decision: the same rivals weighed at the data's measured noise.
+std::unique_ptr<EstimationStage> createRivalSelectionAtDataNoise();
 /** Params::useEstimatedNoise, calibrated data: the reported covariance raised to the final
 inliers' residual-based (sandwich) one where it exceeds it (residual_covariance.cpp). */
 std::unique_ptr<EstimationStage> createResidualCovariance();

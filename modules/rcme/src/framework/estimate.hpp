@@ -63,6 +63,8 @@ struct StageOutcome
     std::optional<std::vector<uchar>> inFront;
     //! What is determined instead of the motion (Estimate::rotation).
     std::optional<Rotation> rotation;
+    //! The motions the rival decision weighed (Estimate::weighedMotions).
+    std::optional<std::vector<Model>> weighedMotions;
 
     //! The outcome that replaces the estimate with `fit`.
     static StageOutcome revised(Fit fit)
@@ -101,6 +103,10 @@ struct Estimate
     a point behind a camera costing as an outlier) of the returned motion and C_rival that of the
     best distinct rival, refitted; +inf when no rival came close, NaN when it did not run. */
     double rivalCostGap = std::numeric_limits<double>::quiet_NaN();
+    /** The motions the rival motion decision weighed, each refitted on its own points (the
+    loop's rivals, refittedRivalMotions, and the estimate it was given), so that a later stage
+    weighs them again without refitting; empty when it did not run. */
+    std::vector<Model> weighedMotions;
 
     Fit fit() const { return Fit{model, score, mask}; }
 };

@@ -29,6 +29,8 @@ void apply(StageOutcome& outcome, Estimate& estimate)
         estimate.inFront = std::move(*outcome.inFront);
     if (outcome.rotation)
         estimate.rotation = std::move(*outcome.rotation);
+    if (outcome.weighedMotions)
+        estimate.weighedMotions = std::move(*outcome.weighedMotions);
     if (!outcome.verdict)
         return;
     Verdict& verdict = *outcome.verdict;

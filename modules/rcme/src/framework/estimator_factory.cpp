@@ -163,6 +163,7 @@ EstimatorComponents createEstimator(const Params& params, const TwoViewData& dat
     // bound.
     if (data.calibrated && params.ambiguityMargin > 0) {
         c.stages.push_back(createRivalMotionDecision(params.ambiguityMargin));
+        c.stages.push_back(createRivalSelectionAtDataNoise());
         c.tracksRivals = true;
     }
     if (data.calibrated && (params.maxRotationStdDeg > 0 || params.maxTranslationStdDeg > 0))

@@ -230,7 +230,14 @@ struct CV_EXPORTS_W_SIMPLE Params
     refitted on the points they explain, the one of least truncated cost (MSAC, a point behind a
     camera costing as an outlier) is returned, and when a distinct motion's cost is within this
     many sigma^2 of it (Report::rivalCostGap, twice a log-likelihood ratio) the status is
-    #STATUS_UNDETERMINED_MOTION. <= 0 disables the test (the rivals are then neither refitted
+    #STATUS_UNDETERMINED_MOTION. After it (and on a planar scene's motion, which it leaves to
+    the degeneracy test) the same rivals are weighed at the noise the final fit measured when
+    that is below sigma: MSAC's cost capped at the threshold scaled by measured / stated noise, and
+    a rival cheaper by 10 measured sigma^2 (on a plane's motion: that also fits its own points at
+    most at 0.75 of the estimate's noise) replaces the estimate, with its own final fit
+    (rivalCostGap stays the first comparison's). A threshold wider than the noise otherwise lets
+    a motion win with points a few noise widths off its epipolar lines (KITTI 01's consecutive
+    KLT pairs, doc/vo_front_end.md). <= 0 disables both (the rivals are then neither refitted
     nor compared). Default 2, chosen on synthetic scenes (doc/experiments_archive.md); the
     paper's experiments: 0. */
     CV_PROP_RW double ambiguityMargin;

@@ -1,0 +1,122 @@
+// This file is part of the rcme module. It is subject to the license terms in the LICENSE file
+// found in the top-level directory of this distribution.
+
+// The rivals weighed at the data's own noise (calibrated data, with the rival motion decision):
+// the loop's distinct motions compared with the estimate by a truncated cost whose cap is the
+// inlier threshold scaled to the noise the final fit measured, not to the stated one.
+
+#include "components/motion_support.hpp"
+#include "framework/component_factories.hpp"
+#include "framework/ransac_loop.hpp"
+#include "framework/refinement.hpp"
+#include "geometry/epipolar.hpp"
+#include "geometry/statistics.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace cv {
+namespace rcme {
+namespace detail {
+
+namespace {
+
+// The noise of the points within the stated band of F, from the median of their squared Sampson
+// distances (chi-square, 1 DoF; the band's truncation biases it alike for every F).
+double bandNoise(const TwoViewData& data, const Eigen::Matrix3d& F)
+{
+    const double thresholdSquared = data.threshold * data.threshold;
+    std::vector<double> squared;
+    for (size_t i = 0; i < data.points1.size(); ++i) {
+        const double d = sampsonDistanceSquared(F, data.points1[i], data.points2[i]);
+        if (d <= thresholdSquared)
+            squared.push_back(d);
+    }
+    if (squared.empty())
+        return std::numeric_limits<double>::infinity();
+    const auto middle = squared.begin() + static_cast<std::ptrdiff_t>(squared.size() / 2);
+    std::nth_element(squared.begin(), middle, squared.end());
+    return std::sqrt(*middle / chiSquareQuantile(0.5, 1));
+}
+
+// A rival replaces the estimate only when its cost at the data's noise is lower by this many
+// sigma^2 (as the planar path's ambiguity gap, components/motion_space.cpp): members of a planar
+// scene's family of F differ by noise alone. On KITTI 01's consecutive KLT pairs the rivals that
+// replaced a wrong motion were better by 30-1300 sigma^2 (doc/vo_front_end.md).
+constexpr double kRequiredGain = 10.0;
+// On a planar scene's motion a rival must also fit the points of its band at most at this share
+// of the estimate's noise (bandNoise): on KITTI 01 the rivals that replaced a wrong plane's motion
+// fitted theirs at 0.15-0.70 of it; on the synthetic planes of test_degeneracy.cpp, members of
+// the family of F at 0.94-1.0.
+constexpr double kRivalNoiseShare = 0.75;
+
+/* A stated threshold wider than the data's noise lets a wrong motion collect points a few noise
+widths off its epipolar lines: on a highway's consecutive KLT pairs (doc/vo_front_end.md), tracks
+stuck on repeating road texture, 3-5 px off the true lines, join the far tracks that fit any
+translation once the rotation adapts, and at 1.96 px the wrong, nearly lateral motion explains
+more points than the true one. At the noise of the tracks (0.25-0.35 px, from the final fit's
+residuals) those points cost as outliers and the true motion explains the rest better. So each
+rival motion of the loop with half the estimate's support (refittedRivalMotions) is weighed
+against the estimate by MSAC's cost capped at (c sigma_hat / sigma)^2, c the threshold, sigma the
+stated noise and sigma_hat the estimate's measured one (Model::noiseSigma; only when it is below
+sigma: with noise as stated the cost is the rival decision's, which already chose). The rival of
+least cost replaces the estimate, with its own final fit, when it is better by kRequiredGain
+sigma_hat^2. It runs on a planar scene's motion too (the homography may have fitted only the far
+points of a deep scene), but there the rival must also fit its own points more tightly
+(kRivalNoiseShare): on a real plane every member of the family of F fits the plane, the final
+fit's noise is below the stated one because that family absorbs part of it, and a member that
+fits a few points (and outliers) more tightly is no better motion. */
+class RivalSelectionAtDataNoise final : public EstimationStage
+{
+public:
+    StageOutcome run(const StageContext& context, const Estimate& estimate) override
+    {
+        const TwoViewData& data = context.data;
+        const double measured = estimate.model.noiseSigma;
+        if (!estimate.model.motion || !(measured > 0.0) || measured >= data.sigma)
+            return {};
+        const double cap = data.threshold * measured / data.sigma;
+        const double capSquared = cap * cap;
+        double bestCost =
+            truncatedCost(data, estimate.model.F, capSquared) - kRequiredGain * measured * measured;
+        const double noiseBound =
+            estimate.planar ? kRivalNoiseShare * bandNoise(data, estimate.model.F) : 0.0;
+        // The rival decision's refitted motions when it ran (not on a plane's motion).
+        std::vector<Model> rivals =
+            estimate.weighedMotions.empty()
+                ? refittedRivalMotions(data, context.search.rivals, estimate.model,
+                                       estimate.score.inlierCount)
+                : estimate.weighedMotions;
+        std::optional<Model> best;
+        for (Model& rival : rivals) {
+            if (!areDistinctMotions(rival, estimate.model))
+                continue;
+            const double cost = truncatedCost(data, rival.F, capSquared);
+            if (cost < bestCost && (!estimate.planar || bandNoise(data, rival.F) <= noiseBound)) {
+                bestCost = cost;
+                best = std::move(rival);
+            }
+        }
+        if (!best)
+            return {};
+        Fit chosen{*best, Score(), {}};
+        context.scorer.classify(data, chosen.model, chosen.inliers);
+        chosen.score = context.scorer.score(data, chosen.model);
+        if (!chosen.score.isCandidate)
+            return {};
+        context.refinement.finalFit(data, chosen.model, chosen.inliers);
+        return StageOutcome::revised(std::move(chosen));
+    }
+};
+
+} // namespace
+
+std::unique_ptr<EstimationStage> createRivalSelectionAtDataNoise()
+{
+    return std::make_unique<RivalSelectionAtDataNoise>();
+}
+
+} // namespace detail
+} // namespace rcme
+} // namespace cv
