@@ -6,12 +6,12 @@
 // also records the verdicts it returns, so the figures cost the library nothing when they are not
 // asked for.
 //
-//     rcme_stage_costs PAIRS ITERATIONS CONFIDENCE SIGMA THRESHOLD REPEATS
+//     rcme_stage_costs PAIRS ITERATIONS CONFIDENCE SIGMA THRESHOLD REPEATS [adaptive|exact]
 //
 // PAIRS is a binary file (speed.py writes it): int32 pair count, then per pair int32 n, the 3x3
 // camera matrix (9 float64, row-major) and n points of image 1 then n of image 2 (2 float64
 // each). Each pair runs REPEATS times in adaptive mode and REPEATS times with exactly ITERATIONS
-// samples; a stage's time on a pair is the fastest of its runs. Prints one JSON object per mode:
+// samples (one mode only when named, e.g. to profile it); a stage's time on a pair is the fastest of its runs. Prints one JSON object per mode:
 // per pair the setup, the loop and each stage that ran (seconds), and the verdicts and model
 // revisions each stage returned.
 
@@ -176,9 +176,9 @@ void printRun(const Run& run)
 
 int main(int argc, char** argv)
 {
-    if (argc != 7) {
+    if (argc != 7 && argc != 8) {
         std::cerr << "usage: rcme_stage_costs PAIRS ITERATIONS CONFIDENCE SIGMA THRESHOLD "
-                     "REPEATS\n";
+                     "REPEATS [adaptive|exact]\n";
         return 2;
     }
     try {
@@ -192,12 +192,17 @@ int main(int argc, char** argv)
         const int repeats = std::max(1, std::stoi(argv[6]));
         cv::setNumThreads(1);
         std::printf("{");
+        const std::string only = argc == 8 ? argv[7] : "";
+        const char* separator = "";
         for (int exact = 0; exact < 2; ++exact) {
+            if (!only.empty() && only != (exact ? "exact" : "adaptive"))
+                continue;
             params.exactIterations = exact == 1;
             // As speed.py: the adaptive runs at the given confidence, the exact ones at the
             // default's (which LO-RANSAC's inner sampling reads).
             params.confidence = exact ? Params().confidence : confidence;
-            std::printf("%s\"%s\": [", exact ? ", " : "", exact ? "exact" : "adaptive");
+            std::printf("%s\"%s\": [", separator, exact ? "exact" : "adaptive");
+            separator = ", ";
             for (size_t p = 0; p < pairs.size(); ++p) {
                 std::printf("%s", p ? ", " : "");
                 printRun(fastest(pairs[p], params, repeats));
