@@ -17,13 +17,24 @@ namespace detail {
 
 namespace {
 
+/* The refit, about 0.3 ms a rival on a real pair, is spent only where it can close the gap. A
+minimal sample's motion costs more than the motion refitted in its basin by an amount that grows
+with the number of points (its error is spread over all of them): rivals that ended within
+Params::ambiguityMargin of the selected motion after their refit cost at most 0.31 sigma^2 per
+point more than it before (corridors, planes, near planes, forward motion: samples/
+guard_reports.cpp's scenes), so a rival is refitted when it costs at most 1 sigma^2 per point
+more (plus the margin). On real pairs (samples/benchmark/speed.py, "Cost per stage") no rival ends
+within the margin, and most cost more than that. */
+constexpr double kMaxRawCostPerPoint = 1.0;
+
 /* Each rival motion of the loop (SearchResult::rivals) with at least half the selected model's
-support and distinct from it is refitted on the points it explains itself; the motion of least
-truncated cost is kept (a rival can beat the selected one: the loop scores raw minimal-sample
-hypotheses; it then gets its own final fit), and when a distinct one comes within the margin of it
-(Estimate::rivalCostGap below the margin) the data do not tell the two: STATUS_UNDETERMINED_MOTION,
-the kept motion being the one turned down. Not on a planar scene's motion (its rivals are the
-homography's decompositions, weighed by the degeneracy test). */
+support, distinct from it and not too costly as it stands (above) is refitted on the points it
+explains itself; the motion of least truncated cost is kept (a rival can beat the selected one:
+the loop scores raw minimal-sample hypotheses; it then gets its own final fit), and when a
+distinct one comes within the margin of it (Estimate::rivalCostGap below the margin) the data do
+not tell the two: STATUS_UNDETERMINED_MOTION, the kept motion being the one turned down. Not on a
+planar scene's motion (its rivals are the homography's decompositions, weighed by the degeneracy
+test). */
 class RivalMotionDecision final : public EstimationStage
 {
 public:
@@ -49,10 +60,13 @@ public:
         const TwoViewData& fitData = subset.points1.empty() ? data : subset;
         std::vector<Model> motions{estimate.model};
         std::vector<double> costs{truncatedCost(data, estimate.model.F)};
+        const double mostRawCost =
+            costs[0] + data.sigma * data.sigma * (kMaxRawCostPerPoint * data.size() + margin_);
         std::vector<uchar> within, inFront;
         for (const RivalMotions::Rival& rival : context.search.rivals) {
             if (rival.score.inlierCount < kSupportShare * estimate.score.inlierCount ||
-                !areDistinctMotions(rival.model, estimate.model))
+                !areDistinctMotions(rival.model, estimate.model) ||
+                truncatedCost(data, rival.model.F) > mostRawCost)
                 continue;
             Model refitted = rival.model;
             if (refitOnOwnPoints(fitData, refitted, within, inFront).support <= 0)
