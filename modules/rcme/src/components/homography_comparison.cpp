@@ -109,24 +109,28 @@ bool homographyOfFour(const std::vector<Point2d>& from, const std::vector<Point2
     return H.allFinite();
 }
 
-/* Cheap evidence that no homography explains the candidates: the largest share of them (of at
-most kScreenedPoints, evenly spaced) that the homography of one of kScreenSamples random
-four-point samples holds within `transferThreshold`. H wins the comparison only when it holds
-most of them (compareWithHomography; on KITTI-01 16-21 a wrong F lost to an H holding about
-two thirds), and from a share of 0.6 on, kScreenSamples samples find one of its all-inlier
-samples with probability 0.999; a minimal sample's H holds fewer than the fitted one, so the
-screen only says "no" below half. Half the cost of the test on real pairs, where no homography
+/* Cheap evidence that no homography explains the candidates: the largest share that the
+homography of one of kScreenSamples random four-point samples holds within `transferThreshold`
+(of at most kScreenedPoints candidates, evenly spaced), among the points it or F
+(`heldByF`) holds, as the comparison counts them. H wins the comparison only when it holds most
+of those (compareWithHomography; on KITTI-01 16-21 a wrong F lost to an H holding about two
+thirds of the candidates), and from a share of 0.6 on, kScreenSamples samples find one of its
+all-inlier samples with probability 0.999; a minimal sample's H holds fewer than the fitted one, so
+the screen only says "no" below half. Half the cost of the test on real pairs, where no homography
 holds half the candidates on most of them. */
 double largestHomographyShare(const std::vector<Point2d>& candidates1,
-                              const std::vector<Point2d>& candidates2, double transferThreshold)
+                              const std::vector<Point2d>& candidates2,
+                              const std::vector<uchar>& heldByF, double transferThreshold)
 {
     constexpr size_t kScreenedPoints = 500;
     constexpr int kScreenSamples = 50;
     const size_t stride = (candidates1.size() + kScreenedPoints - 1) / kScreenedPoints;
     std::vector<Point2d> points1, points2;
+    std::vector<uchar> byF;
     for (size_t i = 0; i < candidates1.size(); i += stride) {
         points1.push_back(candidates1[i]);
         points2.push_back(candidates2[i]);
+        byF.push_back(heldByF[i]);
     }
     // Centred and scaled to a mean distance of sqrt(2) (Hartley): the four-point system is
     // ill-conditioned in pixels. The threshold follows image 2's scale.
@@ -148,7 +152,8 @@ double largestHomographyShare(const std::vector<Point2d>& candidates1,
     const double threshold2 = transferThreshold * transferThreshold * scale2 * scale2;
     const uint32_t count = static_cast<uint32_t>(points1.size());
     uint64_t state = 0x5eed; // fixed: the screen is reproducible
-    int sample[4], best = 0;
+    int sample[4];
+    double best = 0;
     std::vector<int> drawn(4);
     for (int s = 0; s < kScreenSamples; ++s) {
         drawDistinct(state, count, 0, drawn);
@@ -156,15 +161,18 @@ double largestHomographyShare(const std::vector<Point2d>& candidates1,
         Eigen::Matrix3d H;
         if (!homographyOfFour(points1, points2, sample, H))
             continue;
-        int held = 0;
+        int held = 0, either = 0;
         for (size_t i = 0; i < points1.size(); ++i) {
             const Eigen::Vector3d x = H * Eigen::Vector3d(points1[i].x, points1[i].y, 1.0);
             const double dx = x.x() / x.z() - points2[i].x, dy = x.y() / x.z() - points2[i].y;
-            held += dx * dx + dy * dy <= threshold2;
+            const bool byH = dx * dx + dy * dy <= threshold2;
+            held += byH;
+            either += byH || byF[i];
         }
-        best = std::max(best, held);
+        if (either > 0)
+            best = std::max(best, static_cast<double>(held) / either);
     }
-    return static_cast<double>(best) / static_cast<double>(std::max<uint32_t>(count, 1));
+    return best;
 }
 
 } // namespace
@@ -178,12 +186,16 @@ HomographyComparison compareWithHomography(const TwoViewData& data, const Eigen:
     // determined, and then hold points that a homography fits and F does not.
     const double thresholdSquared = data.threshold * data.threshold;
     std::vector<Point2d> candidates1, candidates2;
-    for (size_t i = 0; i < data.points1.size(); ++i)
-        if (mask[i] ||
-            sampsonDistanceSquared(F, data.points1[i], data.points2[i]) <= thresholdSquared) {
+    std::vector<uchar> heldByF;
+    for (size_t i = 0; i < data.points1.size(); ++i) {
+        const bool byF =
+            sampsonDistanceSquared(F, data.points1[i], data.points2[i]) <= thresholdSquared;
+        if (mask[i] || byF) {
             candidates1.emplace_back(data.points1[i].x(), data.points1[i].y());
             candidates2.emplace_back(data.points2[i].x(), data.points2[i].y());
+            heldByF.push_back(byF);
         }
+    }
     if (candidates1.size() < 8)
         return result;
 
@@ -194,7 +206,7 @@ HomographyComparison compareWithHomography(const TwoViewData& data, const Eigen:
     // samples, whose planar path then returns the right motion; 50 found one of 112, which did
     // not win.) Where no homography of a minimal sample holds half the candidates, none wins.
     const double transferThreshold = data.sigma * std::sqrt(2.0 * chiSquareQuantile(0.95, 2));
-    if (largestHomographyShare(candidates1, candidates2, transferThreshold) < 0.5)
+    if (largestHomographyShare(candidates1, candidates2, heldByF, transferThreshold) < 0.5)
         return result;
     // OpenCV's RANSAC here draws from a fixed seed, so the result is reproducible. A large set
     // is searched on an evenly spaced subset (kMaxIteratedPoints): twenty thousand points decide
