@@ -67,13 +67,18 @@ def homography_ratio(p1, p2):
     return float(s_h / max(s_h + s_f, 1e-12))
 
 
+def agrees_with_truth(p1, p2, K, R, t):
+    """The matches that agree with the true motion: Sampson distance below 2 px."""
+    Kinv = np.linalg.inv(K)
+    F = Kinv.T @ np.array([[0, -t[2], t[1]], [t[2], 0, -t[0]], [-t[1], t[0], 0]]) @ R @ Kinv
+    return sampson_distance(F, p1, p2) < 2.0
+
+
 def parallax(p1, p2, K, R, t):
     """(count, median parallax in degrees) of the matches that agree with the true motion
     (Sampson < 2 px) and triangulate in front of both cameras. Measured with the ground truth
     so that the selection favours none of the compared estimators."""
-    Kinv = np.linalg.inv(K)
-    F = Kinv.T @ np.array([[0, -t[2], t[1]], [t[2], 0, -t[0]], [-t[1], t[0], 0]]) @ R @ Kinv
-    good = sampson_distance(F, p1, p2) < 2.0
+    good = agrees_with_truth(p1, p2, K, R, t)
     if good.sum() < MIN_TRIANGULATED:
         return int(good.sum()), 0.0
     P1 = K @ np.hstack([np.eye(3), np.zeros((3, 1))])

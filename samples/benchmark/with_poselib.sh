@@ -5,6 +5,7 @@
 # and the built module through PYTHONPATH; the arguments go to run_benchmark.py.
 #
 #   samples/benchmark/with_poselib.sh [run_benchmark.py arguments]
+#   samples/benchmark/with_poselib.sh --sparse-only [...]   (the sparse-pairs suite alone)
 #   samples/benchmark/with_poselib.sh --speed [speed.py arguments]   (the timing side by side)
 #   samples/benchmark/with_poselib.sh --vo-front-end [vo_front_end.py arguments]
 #   samples/benchmark/with_poselib.sh --covariance [covariance_calibration.py arguments]

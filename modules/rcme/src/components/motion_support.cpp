@@ -72,7 +72,8 @@ MotionSupport refitOnOwnPoints(const TwoViewData& data, Model& motion, std::vect
 
 std::vector<Model> refittedRivalMotions(const TwoViewData& data,
                                         const std::vector<RivalMotions::Rival>& rivals,
-                                        const Model& selected, int selectedInliers)
+                                        const Model& selected, int selectedInliers,
+                                        double maxRawCost)
 {
     const TwoViewData subset = data.size() > static_cast<int>(kMaxIteratedPoints)
                                    ? evenlySpacedSubset(data, kMaxIteratedPoints)
@@ -83,7 +84,8 @@ std::vector<Model> refittedRivalMotions(const TwoViewData& data,
     std::vector<uchar> within, inFront;
     for (const RivalMotions::Rival& rival : rivals) {
         if (rival.score.inlierCount < kSupportShare * selectedInliers ||
-            !areDistinctMotions(rival.model, selected))
+            !areDistinctMotions(rival.model, selected) ||
+            (std::isfinite(maxRawCost) && truncatedCost(data, rival.model.F) > maxRawCost))
             continue;
         Model refitted = rival.model;
         if (refitOnOwnPoints(fitData, refitted, within, inFront).support <= 0)

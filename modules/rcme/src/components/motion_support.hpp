@@ -49,10 +49,13 @@ with at least half its support (`selectedInliers`; RivalMotions' own gate) and d
 each refitted on the points it explains itself and its decomposition chosen again by cheirality
 on all the points of its band, as the selected model's was; a rival that is the selected motion
 again once refitted (forward motion, far points: a sample's few points chose -t) is left out.
-Refit and decomposition on an evenly spaced subset of a large problem (kMaxIteratedPoints). */
-std::vector<Model> refittedRivalMotions(const TwoViewData& data,
-                                        const std::vector<RivalMotions::Rival>& rivals,
-                                        const Model& selected, int selectedInliers);
+Refit and decomposition on an evenly spaced subset of a large problem (kMaxIteratedPoints). A
+rival whose truncated cost as the loop left it exceeds `maxRawCost` is not refitted (its refit is
+the expensive part; rival_motion_decision.cpp says which rivals cannot come close). */
+std::vector<Model>
+refittedRivalMotions(const TwoViewData& data, const std::vector<RivalMotions::Rival>& rivals,
+                     const Model& selected, int selectedInliers,
+                     double maxRawCost = std::numeric_limits<double>::infinity());
 
 } // namespace detail
 } // namespace rcme

@@ -17,13 +17,24 @@ namespace detail {
 
 namespace {
 
+/* The refit, about 0.3 ms a rival on a real pair, is spent only where it can close the gap. A
+minimal sample's motion costs more than the motion refitted in its basin by an amount that grows
+with the number of points (its error is spread over all of them): rivals that ended within
+Params::ambiguityMargin of the selected motion after their refit cost at most 0.31 sigma^2 per
+point more than it before (corridors, planes, near planes, forward motion: samples/
+guard_reports.cpp's scenes), so a rival is refitted when it costs at most 1 sigma^2 per point
+more (plus the margin). On real pairs (samples/benchmark/speed.py, "Cost per stage") no rival ends
+within the margin, and most cost more than that. */
+constexpr double kMaxRawCostPerPoint = 1.0;
+
 /* Each rival motion of the loop (SearchResult::rivals) with at least half the selected model's
-support and distinct from it is refitted on the points it explains itself; the motion of least
-truncated cost is kept (a rival can beat the selected one: the loop scores raw minimal-sample
-hypotheses; it then gets its own final fit), and when a distinct one comes within the margin of it
-(Estimate::rivalCostGap below the margin) the data do not tell the two: STATUS_UNDETERMINED_MOTION,
-the kept motion being the one turned down. Not on a planar scene's motion (its rivals are the
-homography's decompositions, weighed by the degeneracy test). */
+support, distinct from it and not too costly as it stands (above) is refitted on the points it
+explains itself; the motion of least truncated cost is kept (a rival can beat the selected one:
+the loop scores raw minimal-sample hypotheses; it then gets its own final fit), and when a
+distinct one comes within the margin of it (Estimate::rivalCostGap below the margin) the data do
+not tell the two: STATUS_UNDETERMINED_MOTION, the kept motion being the one turned down. Not on a
+planar scene's motion (its rivals are the homography's decompositions, weighed by the degeneracy
+test). */
 class RivalMotionDecision final : public EstimationStage
 {
 public:
@@ -43,12 +54,16 @@ public:
         // is then the selected motion again, not an ambiguity (refittedRivalMotions). Costs on
         // every point.
         std::vector<Model> motions{estimate.model};
+        std::vector<Model> motions{estimate.model};
+        const double selectedCost = truncatedCost(data, estimate.model.F);
+        const double mostRawCost =
+            selectedCost + data.sigma * data.sigma * (kMaxRawCostPerPoint * data.size() + margin_);
         for (Model& rival : refittedRivalMotions(data, context.search.rivals, estimate.model,
-                                                 estimate.score.inlierCount))
+                                                 estimate.score.inlierCount, mostRawCost))
             motions.push_back(std::move(rival));
-        std::vector<double> costs;
-        for (const Model& motion : motions)
-            costs.push_back(truncatedCost(data, motion.F));
+        std::vector<double> costs{selectedCost};
+        for (size_t m = 1; m < motions.size(); ++m)
+            costs.push_back(truncatedCost(data, motions[m].F));
         size_t best = 0;
         for (size_t m = 1; m < motions.size(); ++m)
             if (costs[m] < costs[best])

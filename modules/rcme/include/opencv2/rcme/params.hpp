@@ -226,10 +226,12 @@ struct CV_EXPORTS_W_SIMPLE Params
     sigma^2 of cost). Default true. */
     CV_PROP_RW bool degeneracyTest;
     /** The ambiguity test, with a camera matrix: the loop remembers the best hypothesis of each
-    distinct motion it saw; after it, those with at least half the selected model's support are
-    refitted on the points they explain, the one of least truncated cost (MSAC, a point behind a
-    camera costing as an outlier) is returned, and when a distinct motion's cost is within this
-    many sigma^2 of it (Report::rivalCostGap, twice a log-likelihood ratio) the status is
+    distinct motion it saw; after it, those with at least half the selected model's support and
+    a truncated cost at most sigma^2 per point above the selected model's as they stand (a
+    costlier one does not come within the margin when refitted) are refitted on the points they
+    explain, the one of least truncated cost (MSAC, a point behind a camera costing as an
+    outlier) is returned, and when a distinct motion's cost is within this many sigma^2 of it
+    (Report::rivalCostGap, twice a log-likelihood ratio) the status is
     #STATUS_UNDETERMINED_MOTION. After it (and on a planar scene's motion, which it leaves to
     the degeneracy test) the same rivals are weighed at the noise the final fit measured when
     that is below sigma: MSAC's cost capped at the threshold scaled by measured / stated noise, and
@@ -331,8 +333,9 @@ struct CV_EXPORTS_W_SIMPLE Report
     CV_PROP_RW double translationStdDeg;
     /** The ambiguity test's measure (Params::ambiguityMargin): the truncated cost of the best
     distinct rival motion minus that of the returned (or rejected) one, over sigma^2; +inf when
-    no distinct motion with half the support was seen, NaN when the test did not run (no camera
-    matrix, test off, or no motion). */
+    no distinct motion with half the support was seen or none was worth a refit (see
+    Params::ambiguityMargin), NaN when the test did not run (no camera matrix, test off, or no
+    motion). */
     CV_PROP_RW double rivalCostGap;
     CV_PROP_RW double timeSeconds; //!< wall time of the call
     /** Rejected, for diagnostics: when the status is not #STATUS_SUCCESS, the 3x3 F (pixels,
