@@ -87,7 +87,8 @@ def hard_case_pairs(seeds, first=0):
 
 # The F-only hard cases (issue 38): no camera matrix for anyone. Each scene is judged by
 # F_JUDGE_POINTS noise-free correspondences spread over the whole of image 1 at the depths of the
-# scene's true points (5th to 95th percentile), so that an F right only where the matches are
+# scene's true points (5th to 95th percentile; a plane's: from half its nearest to one and a half
+# times its farthest, as a plane spans few depths), so that an F right only where the matches are
 # (a cluster, a plane) is wrong.
 F_JUDGE_POINTS = 200
 
@@ -105,17 +106,19 @@ def _project(K, R, t, x1, depth):
     return (x2[:2] / x2[2]).T
 
 
-def _judge_points(K, R, t, p1, p2, rng):
+def _judge_points(K, R, t, p1, p2, rng, plane):
     depth = _depths(K, R, t, p1, p2)
     near, far = np.percentile(depth[depth > 0], [5, 95])
+    if plane:
+        near, far = 0.5 * depth.min(), 1.5 * depth.max()
     x1 = rng.uniform([0, 0], [IMAGE_W, IMAGE_H], (F_JUDGE_POINTS, 2))
     x2 = _project(K, R, t, x1, rng.uniform(near, far, F_JUDGE_POINTS))
     return np.hstack([x1, x2])
 
 
-def _f_only(label, seed, points1, points2, truth, K, R, t):
+def _f_only(label, seed, points1, points2, truth, K, R, t, plane=False):
     rng = np.random.default_rng(1000 + seed)
-    judge = _judge_points(K, R, t, points1[truth], points2[truth], rng)
+    judge = _judge_points(K, R, t, points1[truth], points2[truth], rng, plane)
     return Pair("F-only hard: " + label, "%s seed %d" % (label, seed), points1, points2,
                 labels=truth, gt_points=judge, sigma=1.0)
 
@@ -141,15 +144,16 @@ def _plane_with_off_plane_points(seed, off_plane):
     t = np.asarray(scene.t).reshape(3)
     p1, p2 = np.asarray(scene.points1), np.asarray(scene.points2)
     truth = np.asarray(scene.inlierMask).ravel() > 0
-    depth = _depths(K, R, t, p1[truth], p2[truth])
+    depth = _depths(K, R, t, p1[truth], p2[truth])  # the plane's, before the points off it
     rng = np.random.default_rng(2000 + seed)
     x1 = rng.uniform([0, 0], [IMAGE_W, IMAGE_H], (off_plane, 2))
     x2 = _project(K, R, t, x1, rng.uniform(0.5 * depth.min(), 1.5 * depth.max(), off_plane))
     x1 = x1 + rng.normal(0, 1.0, x1.shape)
     x2 = x2 + rng.normal(0, 1.0, x2.shape)
-    return _f_only("plane + %d off-plane points" % off_plane, seed, np.vstack([p1, x1]),
+    label = "plane + %d off-plane points" % off_plane if off_plane else "plane"
+    return _f_only(label, seed, np.vstack([p1, x1]),
                    np.vstack([p2, x2]), np.concatenate([truth, np.ones(off_plane, bool)]),
-                   K, R, t)
+                   K, R, t, plane=True)
 
 
 def f_only_hard_case_pairs(seeds, first=0):
@@ -159,7 +163,7 @@ def f_only_hard_case_pairs(seeds, first=0):
         pairs += [_f_only_generated("%d %% true of 500" % (100 * w), seed, inlierRatio=w)
                   for w in (0.10, 0.15, 0.25)]
         pairs += [_f_only_generated("%d points" % n, seed, numPoints=n) for n in (40, 60, 80)]
-        pairs += [_plane_with_off_plane_points(seed, k) for k in (5, 20)]
+        pairs += [_plane_with_off_plane_points(seed, k) for k in (0, 5, 20)]
         # the true matches in the top-left 30 % x 30 % of image 1, the outliers everywhere
         pairs += [_f_only_generated("clustered matches", seed, inlierRegion=0.3)]
     return pairs
