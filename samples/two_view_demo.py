@@ -212,8 +212,9 @@ STATUS_EXPLANATIONS = {
        "any motion computed from them",
     2: "fewer valid correspondences than the minimal solver needs",
     3: "the configuration does not determine the motion: a homography explains the inliers as "
-       "well as F (planar scene, pure rotation or too little parallax), the samples were "
-       "degenerate (identical or collinear points), or cheirality cannot resolve the motion",
+       "well as F (planar scene, pure rotation or too little parallax) and, without K, too few "
+       "points off its plane fix the epipole, the samples were degenerate (identical or "
+       "collinear points), or cheirality cannot resolve the motion",
 }
 
 

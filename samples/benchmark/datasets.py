@@ -130,6 +130,21 @@ def magsac_pairs(folder):
     return pairs
 
 
+def magsac_given_pairs(folder):
+    """The vpts pairs from their *_pts.txt rows as given (the annotated matches and the other
+    putative matches the dataset ships), as a user who has only those correspondences runs them;
+    labels: 1 for the annotated rows, which judge (an estimator does not know them)."""
+    pairs = []
+    for raw in magsac_pairs(folder):
+        if not raw.images:
+            continue
+        name = raw.name[len("magsac/"):]
+        rows = np.loadtxt(os.path.join(folder, name + "_pts.txt"), ndmin=2)
+        pairs.append(LabelledPair(raw.name, rows[:, 0:2].copy(), rows[:, 3:5].copy(),
+                                  rows[:, 6].astype(int), raw.gt_points, raw.gt_F))
+    return pairs
+
+
 def load_all(data_dir):
     """The sequences and the labelled pairs found under data_dir (missing folders are skipped)."""
     sequences, pairs = [], []

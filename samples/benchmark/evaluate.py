@@ -22,6 +22,8 @@ def evaluate(method, pair, budget):
         judged = _against_truth(estimate.rejected_F, estimate.rejected_R, estimate.rejected_t,
                                 pair)
         row["rejected_wrong"] = judged.get("gt_fail")
+        if "f_err" in judged:
+            row["rejected_f_err"] = judged["f_err"]
         return row
     before, after, failed = metrics.paper_failure(estimate, p1, p2, pair.K, budget.sigma)
     row.update(n_I=before, n_I_star=after, paper_fail=bool(failed),

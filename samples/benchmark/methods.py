@@ -185,6 +185,16 @@ def _skew(v):
     return np.array([[0, -v[2], v[1]], [v[2], 0, -v[0]], [-v[1], v[0], 0]])
 
 
+def _poselib_ransac_options(budget):
+    """PoseLib's RANSAC options for the budget: its Sampson threshold, N as min and max
+    iterations when exact, its own adaptive bound at DEFAULT_CONFIDENCE otherwise."""
+    return {"max_iterations": budget.iterations, "max_epipolar_error": budget.threshold,
+            "seed": budget.seed,
+            "min_iterations": min(100, budget.iterations) if budget.adaptive
+            else budget.iterations,
+            "success_prob": DEFAULT_CONFIDENCE if budget.adaptive else 1.0 - 1e-12}
+
+
 def _run_poselib():
     """PoseLib's relative pose (5-point RANSAC with LO and a final bundle adjustment) with K:
     the same pixel threshold on its epipolar (Sampson) error, N as min and max iterations when
@@ -195,11 +205,7 @@ def _run_poselib():
         camera = {"model": "PINHOLE", "width": int(round(2 * K[0, 2])),
                   "height": int(round(2 * K[1, 2])),
                   "params": [K[0, 0], K[1, 1], K[0, 2], K[1, 2]]}
-        options = {"max_iterations": budget.iterations, "max_epipolar_error": budget.threshold,
-                   "seed": budget.seed,
-                   "min_iterations": min(100, budget.iterations) if budget.adaptive
-                   else budget.iterations,
-                   "success_prob": DEFAULT_CONFIDENCE if budget.adaptive else 1.0 - 1e-12}
+        options = _poselib_ransac_options(budget)
         start = time.perf_counter()
         pose, info = poselib.estimate_relative_pose(p1, p2, camera, camera, options, {})
         seconds = time.perf_counter() - start
@@ -210,6 +216,21 @@ def _run_poselib():
         Kinv = np.linalg.inv(K)
         F = Kinv.T @ _skew(t.ravel()) @ R @ Kinv
         return Estimate(True, "ok", _normalized(F), R, t, mask, seconds)
+    return run
+
+
+def _run_poselib_f():
+    """PoseLib's fundamental matrix (7-point RANSAC with LO and a final refinement), no K: the
+    same pixel threshold on its Sampson error, N as for its relative pose."""
+    def run(p1, p2, K, budget):
+        options = _poselib_ransac_options(budget)
+        start = time.perf_counter()
+        F, info = poselib.estimate_fundamental(p1, p2, options, {})
+        seconds = time.perf_counter() - start
+        mask = np.asarray(info["inliers"], bool)
+        if info["num_inliers"] < 7 or not np.all(np.isfinite(F)):
+            return Estimate(False, NO_MODEL, mask=np.zeros(len(p1), bool), seconds=seconds)
+        return Estimate(True, "ok", _normalized(np.asarray(F)), None, None, mask, seconds)
     return run
 
 
@@ -243,12 +264,18 @@ METHODS.update({
 })
 if poselib is not None:
     METHODS["PoseLib relpose"] = (_run_poselib(), True)
+# Estimators of F alone, run by the F-only suite (f_only.py) and not by the main benchmark.
+F_ONLY_METHODS = {}
+if poselib is not None and hasattr(poselib, "estimate_fundamental"):
+    F_ONLY_METHODS["PoseLib F"] = (_run_poselib_f(), True)
 # The peers: no status, and no seed (OpenCV 4.6 ignores cv2.setRNGSeed; PoseLib's seed is
 # taken, but the peers run once per pair and N).
-PEER_METHODS = [m for m in METHODS if m.startswith("cv ") or m.startswith("PoseLib")]
+PEER_METHODS = [m for m in list(METHODS) + list(F_ONLY_METHODS)
+                if m.startswith("cv ") or m.startswith("PoseLib")]
 
 
 def run(name, p1, p2, K, budget):
     """One call of the named method; None when it does not apply (E methods without K)."""
-    return METHODS[name][0](np.ascontiguousarray(p1, np.float64),
+    runner = METHODS[name][0] if name in METHODS else F_ONLY_METHODS[name][0]
+    return runner(np.ascontiguousarray(p1, np.float64),
                             np.ascontiguousarray(p2, np.float64), K, budget)

@@ -123,7 +123,8 @@ def select_sequence_pairs(sequence, matcher, max_gap, references):
 
 
 def labelled_pairs(raw_pairs, matcher):
-    """Pairs of datasets.magsac_pairs as Pair: no K, no pose; labels or annotated points."""
+    """Pairs of datasets.magsac_pairs (or magsac_given_pairs) as Pair: no K, no pose; labels or
+    annotated points."""
     pairs = []
     for raw in raw_pairs:
         if raw.images:
@@ -135,6 +136,10 @@ def labelled_pairs(raw_pairs, matcher):
         else:
             truth = raw.labels > 0
             gt = np.hstack([raw.points1[truth], raw.points2[truth]])
-            pairs.append(Pair("AdelaideRMF", raw.name, raw.points1, raw.points2, labels=truth,
-                              gt_points=gt, unjudgeable=epipole_blind(gt)))
+            # vpts rows as given: the unlabelled rows may be true too, no precision / recall
+            given_vpts = raw.gt_points is not None
+            pairs.append(Pair("MAGSAC vpts, given rows" if given_vpts else "AdelaideRMF",
+                              raw.name, raw.points1, raw.points2,
+                              labels=None if given_vpts else truth, gt_points=gt,
+                              unjudgeable=epipole_blind(gt)))
     return pairs

@@ -9,6 +9,7 @@
 #   samples/benchmark/with_poselib.sh --speed [speed.py arguments]   (the timing side by side)
 #   samples/benchmark/with_poselib.sh --vo-front-end [vo_front_end.py arguments]
 #   samples/benchmark/with_poselib.sh --covariance [covariance_calibration.py arguments]
+#   samples/benchmark/with_poselib.sh --f-only [f_only.py arguments]   (no K for anyone)
 # Environment: BUILD_DIR (default build), POSELIB_VENV (default $BUILD_DIR/poselib-venv),
 # POSELIB_VERSION (default 2.0.5, the version measured in doc/results.md).
 set -euo pipefail
@@ -29,6 +30,9 @@ elif [ "${1:-}" = "--vo-front-end" ]; then
     shift
 elif [ "${1:-}" = "--covariance" ]; then
     script=covariance_calibration.py
+    shift
+elif [ "${1:-}" = "--f-only" ]; then
+    script=f_only.py
     shift
 fi
 PYTHONPATH="$build_dir/python${PYTHONPATH:+:$PYTHONPATH}" \

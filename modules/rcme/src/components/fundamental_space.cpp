@@ -6,6 +6,8 @@
 
 #include "framework/model_space.hpp"
 
+#include "components/plane_parallax.hpp"
+
 namespace cv {
 namespace rcme {
 namespace detail {
@@ -32,15 +34,13 @@ public:
         return std::nullopt;
     }
 
-    // Without K nothing of F is left determined: a family of F explains the points.
-    StageOutcome resolveHomography(const TwoViewData&, Scorer&, const Eigen::Matrix3d&,
+    // Without K a family of F, [e']x H, explains the plane's points: only the points off the
+    // plane can fix the epipole.
+    StageOutcome resolveHomography(const TwoViewData& data, Scorer& scorer,
+                                   const Eigen::Matrix3d& H,
                                    const Estimate& estimate) const override
     {
-        return StageOutcome::rejecting(
-            STATUS_DEGENERATE_CONFIGURATION,
-            "a homography explains the inliers as well as F (planar scene, pure rotation or too "
-            "little parallax): F is not determined without the camera matrix",
-            estimate.model);
+        return resolvePlaneAndParallax(data, scorer, H, estimate);
     }
 
     StageOutcome finish(const TwoViewData&, const Estimate&) const override { return {}; }

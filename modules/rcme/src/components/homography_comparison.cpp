@@ -56,15 +56,6 @@ bool homographySampsonResidual(const Eigen::Matrix3d& H, const Eigen::Vector2d& 
     return whitened.allFinite();
 }
 
-double homographySampsonSquared(const Eigen::Matrix3d& H, const Eigen::Vector2d& x1,
-                                const Eigen::Vector2d& x2)
-{
-    Eigen::Vector2d whitened;
-    if (!homographySampsonResidual(H, x1, x2, whitened))
-        return std::numeric_limits<double>::infinity();
-    return whitened.squaredNorm();
-}
-
 /* The noise of the points that the homography explains, from the median of their squared
 Sampson errors (chi-square, 2 DoF, cut at its 95 % quantile). GRIC needs the data's own noise:
 with a stated sigma larger than it (1 px for sub-pixel SIFT matches) the residual terms shrink and
@@ -176,6 +167,15 @@ double largestHomographyShare(const std::vector<Point2d>& candidates1,
 }
 
 } // namespace
+
+double homographySampsonSquared(const Eigen::Matrix3d& H, const Eigen::Vector2d& x1,
+                                const Eigen::Vector2d& x2)
+{
+    Eigen::Vector2d whitened;
+    if (!homographySampsonResidual(H, x1, x2, whitened))
+        return std::numeric_limits<double>::infinity();
+    return whitened.squaredNorm();
+}
 
 HomographyComparison compareWithHomography(const TwoViewData& data, const Eigen::Matrix3d& F,
                                            const std::vector<uchar>& mask)

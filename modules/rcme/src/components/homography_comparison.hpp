@@ -16,6 +16,10 @@ namespace cv {
 namespace rcme {
 namespace detail {
 
+//! The squared Sampson error (pixels^2) of x2 ~ H x1; infinite where it is undefined.
+double homographySampsonSquared(const Eigen::Matrix3d& H, const Eigen::Vector2d& x1,
+                                const Eigen::Vector2d& x2);
+
 //! The final inliers compared with a homography (components/homography_comparison.cpp).
 struct HomographyComparison
 {

@@ -8,14 +8,19 @@ namespace cv {
 namespace rcme {
 namespace detail {
 
-int minimalSupport(const TwoViewData& data, double threshold, int sampleSize, int maxIterations)
+double chanceOfBand(const TwoViewData& data, double threshold)
 {
     const Eigen::Vector2d extent =
         boundingBoxSize(data.points2).cwiseMax(Eigen::Vector2d::Constant(threshold));
     const double band = 2.0 * std::sqrt(2.0) * threshold * extent.norm();
-    const double chance = std::min(1.0, band / (extent.x() * extent.y()));
+    return std::min(1.0, band / (extent.x() * extent.y()));
+}
+
+int minimalSupport(const TwoViewData& data, double threshold, int sampleSize, int maxIterations)
+{
     const double level = 0.05 / std::max(1, maxIterations);
-    return sampleSize + binomialTailBound(std::max(0, data.size() - sampleSize), chance, level);
+    return sampleSize + binomialTailBound(std::max(0, data.size() - sampleSize),
+                                          chanceOfBand(data, threshold), level);
 }
 
 } // namespace detail

@@ -54,7 +54,6 @@ public:
         // is then the selected motion again, not an ambiguity (refittedRivalMotions). Costs on
         // every point.
         std::vector<Model> motions{estimate.model};
-        std::vector<Model> motions{estimate.model};
         const double selectedCost = truncatedCost(data, estimate.model.F);
         const double mostRawCost =
             selectedCost + data.sigma * data.sigma * (kMaxRawCostPerPoint * data.size() + margin_);

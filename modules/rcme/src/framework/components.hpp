@@ -220,13 +220,15 @@ struct EstimatorComponents
     bool tracksRivals = false;
 };
 
-/** The inlier count that chance alone exceeds with probability at most 5 % over a whole run: a
-random correspondence falls within `threshold` (Sampson distance, pixels) of a hypothesis with
-probability p, bounded generously by an epipolar band of half-width sqrt(2) * threshold across
-the diagonal of the points' bounding box in image 2 over its area (the Sampson distance is at
-least the image-2 line distance over sqrt(2)); the bound is the Binomial(n - m, p) quantile at
-0.05 / maxIterations (Bonferroni over the hypotheses), plus the m sample points. A test of
-non-randomness in the spirit of PROSAC's. */
+/** The probability p that a random correspondence falls within `threshold` (Sampson distance,
+pixels) of a given F, bounded generously by an epipolar band of half-width sqrt(2) * threshold
+across the diagonal of the points' bounding box in image 2 over its area (the Sampson distance is
+at least the image-2 line distance over sqrt(2)). */
+double chanceOfBand(const TwoViewData& data, double threshold);
+
+/** The inlier count that chance alone exceeds with probability at most 5 % over a whole run: the
+Binomial(n - m, p) quantile at 0.05 / maxIterations (Bonferroni over the hypotheses; p:
+chanceOfBand), plus the m sample points. A test of non-randomness in the spirit of PROSAC's. */
 int minimalSupport(const TwoViewData& data, double threshold, int sampleSize, int maxIterations);
 
 } // namespace detail

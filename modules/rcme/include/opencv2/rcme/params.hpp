@@ -218,8 +218,11 @@ struct CV_EXPORTS_W_SIMPLE Params
     CV_PROP_RW bool localOptimization;
     /** After the loop, compare the final inliers' fit by F with their fit by a homography
     (Torr's GRIC @cite Torr1998GRIC). When the homography explains them at least as well (a planar
-    scene, a rotation without translation, too little parallax): without a camera matrix F is not
-    determined and the status is #STATUS_DEGENERATE_CONFIGURATION; with one, a rotation that
+    scene, a rotation without translation, too little parallax): without a camera matrix only the
+    correspondences off the homography's plane can fix F = [e']x H (plane and parallax): F stands,
+    or is replaced by the F of the epipole most of them agree with, when more of them agree with
+    one epipole than chance alignments explain, and otherwise the status is
+    #STATUS_DEGENERATE_CONFIGURATION (the message gives the counts); with one, a rotation that
     explains them as well as a motion gives #STATUS_PURE_ROTATION, and otherwise the motion of
     the plane is taken from E or from the homography's decomposition, whichever puts the most
     inliers in front of both cameras (degenerate when two motions do and fit them within 10
