@@ -100,7 +100,11 @@ TEST(Rcme_PlaneParallax, a_dominant_plane_with_points_off_it_keeps_its_f_without
 TEST(Rcme_PlaneParallax, the_homography_explains_the_inliers_of_these_scenes)
 {
     // The scenes above reach the plane and parallax decision: Torr's GRIC prefers the homography
-    // to the returned F on its own inliers, which before this decision meant "degenerate".
+    // to the returned F on its own inliers, which before this decision meant "degenerate". Which
+    // seeds do depends on the build's rounding (the returned F and its inliers): with GCC's
+    // vectorized residual loops all three, in the sanitizer builds (baseline loops, clang) seed 1
+    // alone; at least one must, or the test above no longer tests the decision.
+    int reached = 0;
     for (int seed = 0; seed < 3; ++seed) {
         const PlaneScene scene = planeWithPointsOffIt(40, seed);
         const Report r = withoutK(scene, seed);
@@ -117,10 +121,9 @@ TEST(Rcme_PlaneParallax, the_homography_explains_the_inliers_of_these_scenes)
         Eigen::Matrix3d F;
         cv::cv2eigen(Mat(r.F), F);
         std::vector<uchar> mask(r.mask.begin<uchar>(), r.mask.end<uchar>());
-        EXPECT_TRUE(
-            cv::rcme::detail::compareWithHomography(data, F, mask).homographyExplainsInliers)
-            << seed;
+        reached += cv::rcme::detail::compareWithHomography(data, F, mask).homographyExplainsInliers;
     }
+    EXPECT_GE(reached, 1);
 }
 #endif
 
