@@ -21,19 +21,14 @@ if ! "$venv/bin/python" -c "import poselib" 2>/dev/null; then
     /usr/bin/python3 -m venv --system-site-packages "$venv"
     "$venv/bin/pip" install --quiet "poselib==$version"
 fi
-script=run_benchmark.py
-if [ "${1:-}" = "--speed" ]; then
-    script=speed.py
-    shift
-elif [ "${1:-}" = "--vo-front-end" ]; then
-    script=vo_front_end.py
-    shift
-elif [ "${1:-}" = "--covariance" ]; then
-    script=covariance_calibration.py
-    shift
-elif [ "${1:-}" = "--f-only" ]; then
-    script=f_only.py
-    shift
-fi
+# A suite flag picks the script; the rest of the arguments are the script's.
+case "${1:-}" in
+    --speed) script=speed.py ;;
+    --vo-front-end) script=vo_front_end.py ;;
+    --covariance) script=covariance_calibration.py ;;
+    --f-only) script=f_only.py ;;
+    *) script=run_benchmark.py ;;
+esac
+[ "$script" = run_benchmark.py ] || shift
 PYTHONPATH="$build_dir/python${PYTHONPATH:+:$PYTHONPATH}" \
     "$venv/bin/python" "samples/benchmark/$script" "$@"
