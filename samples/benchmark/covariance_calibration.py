@@ -422,7 +422,8 @@ def loop_translation_nees(reports, covariances, step=1e-6):
         C = np.asarray(C, np.float64)
         variance += float(g @ C @ g)
         spread_variance += float(h @ C @ h)
-    return e * e / variance, spread / math.sqrt(spread_variance)
+    return e * e / variance, (spread / math.sqrt(spread_variance) if spread_variance > 0
+                              else math.inf)
 
 
 # Synthetic triplets of the loop tests: camera centres 0, c1, c2 (units) with N(0, scatter) added,
@@ -433,15 +434,16 @@ SYNTHETIC_LOOP_GEOMETRIES = (("sideways", (1.0, 0.1, 0.3), (2.0, -0.1, 0.5), 0.1
                              ("forward, nearly collinear", (0.0, 0.0, 1.0), (0.0, 0.0, 2.0), 0.01))
 
 
-def synthetic_loops(count, seed=1):
+def synthetic_loop_values(count, seed=1, geometries=SYNTHETIC_LOOP_GEOMETRIES):
     """The loop tests on synthetic triplets with independent Gaussian noise (exact covariances):
-    keypoints shared by the two pairs of an image, as SIFT's are, against split between them as
-    the real loops split them; f = 700 px, sigma 0.5 px."""
+    keypoints shared by the two pairs of an image, as SIFT's are (sideways only), against split
+    between them as the real loops split them; f = 700 px, sigma 0.5 px. Per (geometry, kind), an
+    array of (NEES3, NEES1, conditioning) rows, one per loop of three successes."""
     rng = np.random.default_rng(seed)
     K = np.array([[700.0, 0, 500], [0, 700, 350], [0, 0, 1]])
     sigma = 0.5
-    table = []
-    for geometry, c1, c2, scatter in SYNTHETIC_LOOP_GEOMETRIES:
+    values = {}
+    for geometry, c1, c2, scatter in geometries:
         kinds = (("shared keypoints", "keypoints split between the pairs")
                  if geometry == "sideways" else ("keypoints split between the pairs",))
         found = {kind: [] for kind in kinds}
@@ -467,10 +469,17 @@ def synthetic_loops(count, seed=1):
                     covariances = [r.covariance for r in reports]
                     found[kind].append((loop_nees(reports, covariances),
                                         *loop_translation_nees(reports, covariances)))
-        for kind, values in found.items():
-            v = np.asarray(values).reshape(-1, 3)
-            table.append([geometry, kind, str(len(v))] + _stats(v[:, 0], 3) + _stats(v[:, 1], 1)
-                         + ["%.1f" % np.median(v[:, 2]) if len(v) else "-"])
+        for kind, loops in found.items():
+            values[geometry, kind] = np.asarray(loops).reshape(-1, 3)
+    return values
+
+
+def synthetic_loops(count, seed=1):
+    """The synthetic loop tests' table."""
+    table = []
+    for (geometry, kind), v in synthetic_loop_values(count, seed).items():
+        table.append([geometry, kind, str(len(v))] + _stats(v[:, 0], 3) + _stats(v[:, 1], 1)
+                     + ["%.1f" % np.median(v[:, 2]) if len(v) else "-"])
     lines = ["\n### The loop tests on synthetic triplets\n",
              "%d triplets per geometry with independent noise (sigma 0.5 px, the default "
              "covariance): a calibrated covariance gives chi-square(3) (rotation) and "

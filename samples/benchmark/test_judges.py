@@ -1,12 +1,15 @@
 #!/usr/bin/python3
 """Tests of the benchmark's judges (ctest rcme_benchmark_judges): the F-only judge's blindness
-test (metrics.epipole_blind) and the confusion table's handling of unjudgeable runs.
+test (metrics.epipole_blind), the confusion table's handling of unjudgeable runs, and the
+covariance calibration's loop tests (covariance_calibration.loop_nees, loop_translation_nees).
 
     PYTHONPATH=build/python /usr/bin/python3 samples/benchmark/test_judges.py"""
+import types
 import unittest
 
 import numpy as np
 
+import covariance_calibration as calibration
 import metrics
 import report
 from methods import rcme
@@ -56,6 +59,57 @@ class Auc(unittest.TestCase):
                 {"ok": True, "rot": 20.0, "trans": 1.0}, {"ok": False, "flagged": True}]
         self.assertAlmostEqual(report.auc(rows), (1.0 + 0.5 + 0.0 + 0.0) / 4)
         self.assertIsNone(report.auc([]))
+
+
+def _loop(centres, rotations):
+    """The reports of pairs (0, 1), (1, 2), (0, 2) of three exact cameras x = R (X - C): R, and t
+    of unit length."""
+    reports = []
+    for a, b in ((0, 1), (1, 2), (0, 2)):
+        R = rotations[b] @ rotations[a].T
+        t = rotations[b] @ (centres[a] - centres[b])
+        reports.append(types.SimpleNamespace(R=R, t=t / np.linalg.norm(t)))
+    return reports
+
+
+class LoopTests(unittest.TestCase):
+    centres = [np.zeros(3), np.r_[1.0, 0.2, 0.3], np.r_[2.0, -0.3, 0.4]]
+    rotations = [np.eye(3), calibration._exp([0.02, -0.05, 0.01]),
+                 calibration._exp([-0.03, 0.04, 0.02])]
+
+    def test_exact_estimates_close_both_loops(self):
+        reports = _loop(self.centres, self.rotations)
+        covariances = [np.diag([1e-6, 1e-6, 1e-6, 1e-6, 1e-6])] * 3
+        self.assertLess(calibration.loop_nees(reports, covariances), 1e-12)
+        nees1, conditioning = calibration.loop_translation_nees(reports, covariances)
+        self.assertLess(nees1, 1e-12)
+        self.assertGreater(conditioning, 10)
+
+    def test_coplanarity_is_the_angle_out_of_the_plane_over_its_std(self):
+        reports = _loop(self.centres, self.rotations)
+        (_, tij), (Rjk, tjk), _ = ((r.R, r.t) for r in reports)
+        normal = np.cross(Rjk @ tij, tjk)
+        normal /= np.linalg.norm(normal)
+        angle, std = 0.003, 0.001
+        reports[2].t = np.cos(angle) * reports[2].t + np.sin(angle) * normal
+        only_ik = [np.zeros((5, 5)), np.zeros((5, 5)), np.diag([0, 0, 0, std ** 2, std ** 2])]
+        nees1, _ = calibration.loop_translation_nees(reports, only_ik)
+        self.assertAlmostEqual(nees1, (angle / std) ** 2, delta=1e-3 * (angle / std) ** 2)
+        # the rotation of (j, k) turns t_ij into k's frame: its error moves the plane too
+        with_rotation_jk = [only_ik[0], np.diag([std ** 2] * 3 + [0, 0]), only_ik[2]]
+        self.assertLess(calibration.loop_translation_nees(reports, with_rotation_jk)[0],
+                        0.9 * nees1)
+
+    def test_calibrated_on_synthetic_triplets_only_with_split_keypoints(self):
+        values = calibration.synthetic_loop_values(
+            40, seed=3, geometries=calibration.SYNTHETIC_LOOP_GEOMETRIES[:1])
+        split = values["sideways", "keypoints split between the pairs"]
+        shared = values["sideways", "shared keypoints"]
+        self.assertGreaterEqual(len(split), 35)
+        # chi-square(3) and chi-square(1) means over 40 loops: 3 +- 0.4 and 1 +- 0.22 (1 sigma)
+        self.assertTrue(2.0 < np.mean(split[:, 0]) < 4.2, np.mean(split[:, 0]))
+        self.assertTrue(0.5 < np.mean(split[:, 1]) < 1.7, np.mean(split[:, 1]))
+        self.assertLess(np.mean(shared[:, 1]), 0.5 * np.mean(split[:, 1]))
 
 
 if __name__ == "__main__":
