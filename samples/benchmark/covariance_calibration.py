@@ -67,6 +67,11 @@ LOOP_GAPS = {"KITTI-01": (2, 3, 4), "KITTI-06": (3, 4, 5), "fountain-P11": (1, 2
              "templeSR": (1, 2)}
 # The spatially clustered sandwich: cells of a grid over the inliers in image 1.
 CLUSTER_GRID = 8
+# The spatial (kernel) sandwich: scores of inliers closer than a few of this (px, image 1) are
+# taken as correlated, with Gaussian weights (a positive semi-definite kernel); the scale was
+# picked among 10, 30 and 100 px on templeSR and KITTI 06.
+SPATIAL_KERNEL_PX = 30.0
+SPATIAL = "spatial sandwich (kernel %g px), beyond 2 standard errors" % SPATIAL_KERNEL_PX
 
 
 # ---- the covariance's tangent --------------------------------------------------------------
@@ -136,14 +141,15 @@ def truncated_normal_variance(k):
     return 1.0 - 2.0 * k * density / math.erf(k / np.sqrt(2))
 
 
-def psd_max(A, B):
-    """The smallest covariance at least as large as A and B along every direction:
-    A^1/2 max(I, A^-1/2 B A^-1/2) A^1/2 (the library's rule without its margin)."""
+def psd_max(A, B, margin=0.0):
+    """The smallest covariance at least as large as A and B along every direction, B's
+    eigenvalues in A's whitened coordinates lowered by margin first:
+    A^1/2 max(I, A^-1/2 B A^-1/2 - margin) A^1/2 (the library's rule with margin 2 sqrt(2 / n))."""
     w, V = np.linalg.eigh(A)
     half = V @ np.diag(np.sqrt(np.maximum(w, 1e-300))) @ V.T
     inv_half = V @ np.diag(1 / np.sqrt(np.maximum(w, 1e-300))) @ V.T
     m, U = np.linalg.eigh(inv_half @ B @ inv_half)
-    return half @ U @ np.diag(np.maximum(m, 1.0)) @ U.T @ half
+    return half @ U @ np.diag(np.maximum(m - margin, 1.0)) @ U.T @ half
 
 
 def _noise_and_truncation(report, params, inliers):
@@ -163,8 +169,10 @@ def candidates(report, pair, params):
     """The candidate covariances of one successful estimate, all from its own final inliers: the
     reported one (Report::covariance), the model-based one (one noise for every point: the
     library's covariance before components/residual_covariance.cpp), the residual-based sandwich,
-    the same with the scores summed over spatial cells (errors correlated within a cell), and the
-    larger of the model-based one and the sandwich without the library's margin."""
+    the same with the scores summed over spatial cells (errors correlated within a cell), the
+    larger of the model-based one and the sandwich without the library's margin, and the larger
+    of the model-based one and a spatial-kernel sandwich (scores of nearby inliers correlated)
+    with the library's margin."""
     inliers = np.asarray(report.mask).ravel().astype(bool)
     p1, p2 = pair.points1[inliers], pair.points2[inliers]
     d, J = residuals_and_jacobian(np.asarray(report.R), np.asarray(report.t), pair.K, p1, p2)
@@ -179,10 +187,14 @@ def candidates(report, pair, params):
     sums = np.array([scores[cells == c].sum(0) for c in np.unique(cells)])
     G = len(sums)
     clustered = A_inv @ (sums.T @ sums) @ A_inv * G / max(G - 1, 1) / h ** 2
+    squared_distances = np.sum((p1[:, None, :] - p1[None, :, :]) ** 2, axis=-1)
+    weights = np.exp(-squared_distances / (2 * SPATIAL_KERNEL_PX ** 2))
+    spatial = A_inv @ (scores.T @ weights @ scores) @ A_inv * n / (n - 5) / h ** 2
     return {REPORTED: np.asarray(report.covariance, np.float64), MODEL_BASED: model_based,
             "sandwich": sandwich,
             "clustered sandwich (%dx%d cells)" % (CLUSTER_GRID, CLUSTER_GRID): clustered,
-            "max(model-based, sandwich), no margin": psd_max(model_based, sandwich)}
+            "max(model-based, sandwich), no margin": psd_max(model_based, sandwich),
+            SPATIAL: psd_max(model_based, spatial, 2 * math.sqrt(2 / n))}
 
 
 def ground_truth_fit(report, pair, params):
@@ -233,7 +245,8 @@ def _stats(values, dof):
     v = np.asarray(values, np.float64)
     if len(v) == 0:
         return ["-"] * 3
-    return ["%.2f" % np.mean(v), "%.2f" % np.median(v), "%.0f %%" % (100 * np.mean(v < CHI2_95[dof]))]
+    return ["%.2f" % np.mean(v), "%.2f" % np.median(v),
+            "%.0f %%" % (100 * np.mean(v < CHI2_95[dof]))]
 
 
 def nees_table(rows, groups):
@@ -370,6 +383,20 @@ def loop_rows(sequences, matcher, sigma, max_loops):
     return rows
 
 
+class _SubsampledMatcher:
+    """A matcher that keeps half of another's matches (a hash of the point in image 1, independent
+    of the loops' split): the loop tests at a smaller share of the matches."""
+
+    def __init__(self, matcher):
+        self.matcher = matcher
+
+    def match(self, *args):
+        p1, p2, *rest = self.matcher.match(*args)
+        q = np.round(np.asarray(p1) * 64).astype(np.int64)
+        keep = (((q[:, 0] * 2654435761) ^ (q[:, 1] * 40503)) >> 11) & 1 == 0
+        return (p1[keep], p2[keep], *rest)
+
+
 def loop_nees(reports, covariances):
     """Rotation NEES of the loop of the reports of (i, j), (j, k), (i, k) with these covariances:
     omega = log(R_ik^T R_jk R_ij) ~ omega_ik - omega_ij - R_ij^T omega_jk to first order, with
@@ -434,11 +461,12 @@ SYNTHETIC_LOOP_GEOMETRIES = (("sideways", (1.0, 0.1, 0.3), (2.0, -0.1, 0.5), 0.1
                              ("forward, nearly collinear", (0.0, 0.0, 1.0), (0.0, 0.0, 2.0), 0.01))
 
 
-def synthetic_loop_values(count, seed=1, geometries=SYNTHETIC_LOOP_GEOMETRIES):
+def synthetic_loop_values(count, seed=1, geometries=SYNTHETIC_LOOP_GEOMETRIES, points=800):
     """The loop tests on synthetic triplets with independent Gaussian noise (exact covariances):
     keypoints shared by the two pairs of an image, as SIFT's are (sideways only), against split
-    between them as the real loops split them; f = 700 px, sigma 0.5 px. Per (geometry, kind), an
-    array of (NEES3, NEES1, conditioning) rows, one per loop of three successes."""
+    between them as the real loops split them; f = 700 px, sigma 0.5 px, this many scene points
+    (each pair of a split loop gets about a quarter). Per (geometry, kind), an array of (NEES3,
+    NEES1, conditioning) rows, one per loop of three successes."""
     rng = np.random.default_rng(seed)
     K = np.array([[700.0, 0, 500], [0, 700, 350], [0, 0, 1]])
     sigma = 0.5
@@ -448,7 +476,8 @@ def synthetic_loop_values(count, seed=1, geometries=SYNTHETIC_LOOP_GEOMETRIES):
                  if geometry == "sideways" else ("keypoints split between the pairs",))
         found = {kind: [] for kind in kinds}
         for _ in range(count):
-            X = np.c_[rng.uniform(-6, 6, 800), rng.uniform(-4, 4, 800), rng.uniform(6, 20, 800)]
+            X = np.c_[rng.uniform(-6, 6, points), rng.uniform(-4, 4, points),
+                      rng.uniform(6, 20, points)]
             rotations = [np.eye(3)] + [_exp(rng.normal(0, 0.05, 3)) for _ in range(2)]
             centres = [np.zeros(3), np.r_[c1] + rng.normal(0, scatter, 3),
                        np.r_[c2] + rng.normal(0, scatter, 3)]
@@ -477,7 +506,12 @@ def synthetic_loop_values(count, seed=1, geometries=SYNTHETIC_LOOP_GEOMETRIES):
 def synthetic_loops(count, seed=1):
     """The synthetic loop tests' table."""
     table = []
-    for (geometry, kind), v in synthetic_loop_values(count, seed).items():
+    values = synthetic_loop_values(count, seed)
+    for points in (400, 1600):  # how the loop test reads at fewer and more matches per pair
+        more = synthetic_loop_values(count, seed, SYNTHETIC_LOOP_GEOMETRIES[:1], points)
+        values.update({("%s, %d points" % (geometry, points), kind): v
+                       for (geometry, kind), v in more.items() if kind != "shared keypoints"})
+    for (geometry, kind), v in values.items():
         table.append([geometry, kind, str(len(v))] + _stats(v[:, 0], 3) + _stats(v[:, 1], 1)
                      + ["%.1f" % np.median(v[:, 2]) if len(v) else "-"])
     lines = ["\n### The loop tests on synthetic triplets\n",
@@ -485,7 +519,8 @@ def synthetic_loops(count, seed=1):
              "covariance): a calibrated covariance gives chi-square(3) (rotation) and "
              "chi-square(1) (translation directions' coplanarity: mean 1, median 0.455, 95 %% "
              "below 3.841) when no keypoint enters two pairs of a loop; shared keypoints cancel "
-             "in the loop and make it look conservative. Geometries: %s.\n" % (count, "; ".join(
+             "in the loop and make it look conservative. Geometries (800 scene points unless "
+             "said): %s.\n" % (count, "; ".join(
                  "%s: centres 0, %s, %s + N(0, %g) per axis" % (g, c1, c2, s)
                  for g, c1, c2, s in SYNTHETIC_LOOP_GEOMETRIES))]
     lines.append(_markdown(["geometry", "keypoints", "loops"] + LOOP_HEADER, table))
@@ -588,7 +623,8 @@ def run_synthetic(scenes_per_config, stated_sigma_factor):
                               GROSS_ROTATION_DEG, GROSS_TRANSLATION_DEG)]
     groups = []
     for estimated, mode in NOISE_MODES:
-        for name in ((REPORTED, MODEL_BASED, "sandwich") if estimated else (REPORTED,)):
+        for name in ((REPORTED, MODEL_BASED, "sandwich", SPATIAL) if estimated else
+                     (REPORTED,)):
             for scene, outliers in (("all", "all"), ("generic", "no outliers"),
                                     ("generic", "30 % outliers"), ("corridor", "no outliers"),
                                     ("corridor", "30 % outliers")):
@@ -685,6 +721,20 @@ def real_report(args, out_dir):
                            loop_table))
     default_loops = [r for r in loops if r["mode"] == NOISE_MODES[0][1] and
                      r["candidate"] == REPORTED]
+    smaller = [r for r in loop_rows(sequences, _SubsampledMatcher(matcher), args.sigma,
+                                    args.max_loops)
+               if r["mode"] == NOISE_MODES[0][1] and r["candidate"] == REPORTED]
+    share_table = [[d, split_of(d), share, str(len(subset))] + loop_stats(subset)
+                   for d in sorted({r["dataset"] for r in default_loops},
+                                   key=lambda d: (split_of(d), d))
+                   for share, rows_of in (("1/4", default_loops), ("1/8", smaller))
+                   for subset in [[r for r in rows_of if r["dataset"] == d]] if subset]
+    lines += ["\nThe same loops with half of each pair's matches left out first (each pair keeps "
+              "about 1/8 of its matches instead of 1/4; default covariance). A covariance that "
+              "leaves out an error which does not shrink with the number of matches looks more "
+              "over-confident the more matches it is computed from.\n",
+              _markdown(["sequence", "split", "share of the matches", "loops"] + LOOP_HEADER,
+                        share_table)]
     gt = gt_error(default, default_loops, slice(0, 3), "nees3", 3)
     gt_t = gt_error(default, default_loops, slice(3, 5), "nees1", 1)
     by_name = {s.name: s for s in sequences}
