@@ -23,6 +23,7 @@
 #include "opencv2/rcme/opencv_geometry.hpp"
 
 #include <algorithm>
+#include <numeric>
 
 namespace cv {
 namespace rcme {
@@ -141,14 +142,27 @@ double largestHomographyShare(const std::vector<Point2d>& candidates1,
     normalize(points1);
     const double scale2 = normalize(points2);
     const double threshold2 = transferThreshold * transferThreshold * scale2 * scale2;
-    const uint32_t count = static_cast<uint32_t>(points1.size());
+    // The samples are drawn among the points F holds (among every candidate when they are
+    // fewer than four): a plane that explains F's inliers is most of them, while among every
+    // candidate (F's inliers and the method's wider band) it can be a minority that 50 samples
+    // miss.
+    std::vector<int> held;
+    for (size_t i = 0; i < byF.size(); ++i)
+        if (byF[i])
+            held.push_back(static_cast<int>(i));
+    if (held.size() < 4) {
+        held.resize(byF.size());
+        std::iota(held.begin(), held.end(), 0);
+    }
+    const uint32_t count = static_cast<uint32_t>(held.size());
     uint64_t state = 0x5eed; // fixed: the screen is reproducible
     int sample[4];
     double best = 0;
     std::vector<int> drawn(4);
     for (int s = 0; s < kScreenSamples; ++s) {
         drawDistinct(state, count, 0, drawn);
-        std::copy(drawn.begin(), drawn.end(), sample);
+        for (int k = 0; k < 4; ++k)
+            sample[k] = held[static_cast<size_t>(drawn[static_cast<size_t>(k)])];
         Eigen::Matrix3d H;
         if (!homographyOfFour(points1, points2, sample, H))
             continue;
