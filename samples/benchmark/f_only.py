@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""The F-only suite (issue 38): findFundamentalMat's callers without a camera matrix. Three
+"""The F-only suite (issue 38): findFundamentalMat's callers without a camera matrix. Four
 parts, no K for any method:
 
 - given rows: every MAGSAC/AdelaideRMF pair of ../shared/data from its *_pts.txt rows as given
