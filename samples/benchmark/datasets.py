@@ -145,6 +145,50 @@ def magsac_given_pairs(folder):
     return pairs
 
 
+def rows_of_another_pair(given, threshold):
+    """The given pairs whose unlabelled rows are another pair's: {name: (owner, share under its
+    own F, share under the owner's F)}. Two pairs with the same unlabelled rows, row for row, hold
+    them once: they belong to the pair under whose F (the dataset's, or the 8-point fit of its
+    labelled rows) most of them lie within `threshold` (Sampson, px); the other pair's input is
+    its few labelled rows among another image pair's matches. Rows that no pair's F holds (the
+    outliers two labellings of one image pair share, AdelaideRMF's johnssona and johnssonb) are
+    nobody's. Read from the rows, not from a list of names."""
+    def unlabelled(pair):
+        keep = pair.labels <= 0
+        return np.hstack([pair.points1[keep], pair.points2[keep]])
+
+    def own_f(pair):
+        if pair.gt_F is not None:
+            return pair.gt_F
+        truth = pair.labels > 0
+        return _fit_fundamental(pair.points1[truth], pair.points2[truth]) \
+            if truth.sum() >= 8 else None
+
+    def share(F, rows):
+        if F is None:
+            return 0.0
+        return float(np.mean(sampson_distance(F, rows[:, :2], rows[:, 2:]) <= threshold))
+
+    by_rows = {}
+    for pair in given:
+        rows = unlabelled(pair)
+        if len(rows):
+            by_rows.setdefault(rows.tobytes(), []).append(pair)
+    found = {}
+    for group in by_rows.values():
+        if len(group) < 2:
+            continue
+        rows = unlabelled(group[0])
+        shares = [share(own_f(pair), rows) for pair in group]
+        owner = int(np.argmax(shares))
+        if shares[owner] < 0.5:
+            continue
+        for k, pair in enumerate(group):
+            if k != owner:
+                found[pair.name] = (group[owner].name, shares[k], shares[owner])
+    return found
+
+
 def load_all(data_dir):
     """The sequences and the labelled pairs found under data_dir (missing folders are skipped)."""
     sequences, pairs = [], []

@@ -9,11 +9,12 @@
 //     rcme_stage_costs PAIRS ITERATIONS CONFIDENCE SIGMA THRESHOLD REPEATS [adaptive|exact]
 //
 // PAIRS is a binary file (speed.py writes it): int32 pair count, then per pair int32 n, the 3x3
-// camera matrix (9 float64, row-major) and n points of image 1 then n of image 2 (2 float64
-// each). Each pair runs REPEATS times in adaptive mode and REPEATS times with exactly ITERATIONS
-// samples (one mode only when named, e.g. to profile it); a stage's time on a pair is the fastest of its runs. Prints one JSON object per mode:
-// per pair the setup, the loop and each stage that ran (seconds), and the verdicts and model
-// revisions each stage returned.
+// camera matrix (9 float64, row-major; all zeros: no camera matrix, the F-only call) and n
+// points of image 1 then n of image 2 (2 float64 each). Each pair runs REPEATS times in adaptive
+// mode and REPEATS times with exactly ITERATIONS samples (one mode only when named, e.g. to profile
+// it); a stage's time on a pair is the fastest of its runs. Prints one JSON object per mode: per
+// pair the setup, the loop and each stage that ran (seconds), and the verdicts and model revisions
+// each stage returned.
 
 #include "framework/estimation_pipeline.hpp"
 #include "framework/estimator_factory.hpp"
@@ -56,6 +57,8 @@ std::vector<Pair> readPairs(const std::string& path)
         in.read(reinterpret_cast<char*>(pair.K.ptr<double>()), 9 * sizeof(double));
         in.read(reinterpret_cast<char*>(pair.points1.ptr<double>()), 2 * n * sizeof(double));
         in.read(reinterpret_cast<char*>(pair.points2.ptr<double>()), 2 * n * sizeof(double));
+        if (cv::countNonZero(pair.K) == 0)
+            pair.K.release();
     }
     if (!in)
         throw std::runtime_error(path + " is truncated");

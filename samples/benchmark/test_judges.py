@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 """Tests of the benchmark's judges (ctest rcme_benchmark_judges): the F-only judge's blindness
-test (metrics.epipole_blind), the confusion table's handling of unjudgeable runs, and the
-covariance calibration's loop tests (covariance_calibration.loop_nees, loop_translation_nees).
+test (metrics.epipole_blind), the confusion table's handling of unjudgeable runs, the given
+pairs whose rows are another pair's (datasets.rows_of_another_pair), and the covariance
+calibration's loop tests (covariance_calibration.loop_nees, loop_translation_nees).
 
     PYTHONPATH=build/python /usr/bin/python3 samples/benchmark/test_judges.py"""
 import types
@@ -10,6 +11,7 @@ import unittest
 import numpy as np
 
 import covariance_calibration as calibration
+import datasets
 import metrics
 import report
 from methods import rcme
@@ -51,6 +53,51 @@ class ConfusionCells(unittest.TestCase):
         self.assertEqual(rates["runs"], 3)
         self.assertEqual(rates["undetected"], report._pct(1, 3))
         self.assertEqual(rates["false_alarm"], report._pct(1, 2))
+
+
+def _scene(seed):
+    params = rcme.SceneParams()
+    params.kind, params.numPoints, params.inlierRatio, params.sigma, params.seed = (
+        rcme.SCENE_GENERIC, 100, 0.9, 0.5, seed)
+    scene = rcme.generateScene(params)
+    return np.asarray(scene.points1), np.asarray(scene.points2), np.asarray(scene.F)
+
+
+class RowsOfAnotherPair(unittest.TestCase):
+    def test_the_pair_whose_unlabelled_rows_fit_another_pair_is_found(self):
+        # Both pairs: 10 annotated rows of their own, then the same 90 rows of scene 0 (90 %
+        # true under its F); "theirs" is scene 0, "mine" scene 1.
+        p1, p2, F = _scene(0)
+        q1, q2, G = _scene(1)
+        labels = np.concatenate([np.ones(10, int), np.zeros(90, int)])
+        theirs = datasets.LabelledPair("theirs", p1, p2, labels, None, F)
+        mine = datasets.LabelledPair("mine", np.vstack([q1[:10], p1[10:]]),
+                                     np.vstack([q2[:10], p2[10:]]), labels, None, G)
+        found = datasets.rows_of_another_pair([theirs, mine], 1.96)
+        self.assertEqual(list(found), ["mine"])
+        owner, own_share, owner_share = found["mine"]
+        self.assertEqual(owner, "theirs")
+        self.assertLess(own_share, 0.2)
+        self.assertGreater(owner_share, 0.7)
+
+    def test_shared_rows_that_no_pair_holds_are_nobodys(self):
+        # two labellings of one pair's outliers (AdelaideRMF's johnssona and johnssonb)
+        rng = np.random.default_rng(0)
+        p1, p2, F = _scene(0)
+        noise1, noise2 = rng.uniform(0, 640, (30, 2)), rng.uniform(0, 480, (30, 2))
+        labels = np.concatenate([np.ones(100, int), np.zeros(30, int)])
+        a = datasets.LabelledPair("a", np.vstack([p1, noise1]), np.vstack([p2, noise2]), labels)
+        b = datasets.LabelledPair("b", np.vstack([p1[:50], noise1]), np.vstack([p2[:50], noise2]),
+                                  labels[50:])
+        self.assertEqual(datasets.rows_of_another_pair([a, b], 1.96), {})
+
+    def test_unshared_rows_are_nobody_elses(self):
+        p1, p2, F = _scene(0)
+        q1, q2, G = _scene(1)
+        labels = np.concatenate([np.ones(10, int), np.zeros(90, int)])
+        pairs = [datasets.LabelledPair("a", p1, p2, labels, None, F),
+                 datasets.LabelledPair("b", q1, q2, labels, None, G)]
+        self.assertEqual(datasets.rows_of_another_pair(pairs, 1.96), {})
 
 
 class Auc(unittest.TestCase):

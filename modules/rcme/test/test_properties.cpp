@@ -39,24 +39,30 @@ const Method kMethods[] = {METHOD_STANDARD, METHOD_RCME, METHOD_MLESAC, METHOD_C
 
 TEST(Rcme_Properties, swapping_the_views_transposes_f)
 {
-    // Every step is symmetric in the two views (8-point solver, Sampson error, refinement), so
-    // with the same seed the swapped problem draws the same samples and gives F^T up to rounding.
-    for (const Method method : kMethods)
-        for (int seed = 0; seed < 3; ++seed) {
-            SCOPED_TRACE(cv::format("method %d, seed %d", method, seed));
-            const SyntheticScene scene = genericTestScene(seed, 0.7, 300);
-            const Params params = propertyParams(method, seed);
-            Mat mask12, mask21;
-            Status s12, s21;
-            const Mat F12 =
-                cv::rcme::findFundamentalMat(scene.points1, scene.points2, params, mask12, s12);
-            const Mat F21 =
-                cv::rcme::findFundamentalMat(scene.points2, scene.points1, params, mask21, s21);
-            ASSERT_EQ(s12, STATUS_SUCCESS);
-            ASSERT_EQ(s21, STATUS_SUCCESS);
-            EXPECT_LT(fundamentalDistance(F21, F12.t()), 1e-6);
-            EXPECT_LE(cv::norm(mask12, mask21, NORM_L1), 2.0); // a borderline point may flip
-        }
+    // Every step is symmetric in the two views (the 8- and 7-point solvers, Sampson error,
+    // refinement), so with the same seed the swapped problem draws the same samples and gives F^T
+    // up to rounding.
+    for (const MinimalSolverKind solver : {SOLVER_EIGHT_POINT, SOLVER_SEVEN_POINT})
+        for (const Method method : kMethods)
+            for (int seed = 0; seed < 3; ++seed) {
+                SCOPED_TRACE(cv::format("solver %d, method %d, seed %d", solver, method, seed));
+                const SyntheticScene scene = genericTestScene(seed, 0.7, 300);
+                Params params = propertyParams(method, seed);
+                params.solver = solver;
+                Mat mask12, mask21;
+                Status s12, s21;
+                const Mat F12 =
+                    cv::rcme::findFundamentalMat(scene.points1, scene.points2, params, mask12, s12);
+                const Mat F21 =
+                    cv::rcme::findFundamentalMat(scene.points2, scene.points1, params, mask21, s21);
+                ASSERT_EQ(s12, STATUS_SUCCESS);
+                ASSERT_EQ(s21, STATUS_SUCCESS);
+                // The 7-point cubic's roots carry rounding that one run amplifies (Cov-RANSAC, seed
+                // 0: 2.5e-4 apart, the 11 others below 1e-9); a view-order bug is of order 1.
+                EXPECT_LT(fundamentalDistance(F21, F12.t()),
+                          solver == SOLVER_EIGHT_POINT ? 1e-6 : 1e-3);
+                EXPECT_LE(cv::norm(mask12, mask21, NORM_L1), 2.0); // a borderline point may flip
+            }
 }
 
 TEST(Rcme_Properties, swapping_the_views_inverts_the_motion)

@@ -53,8 +53,9 @@ enum MinimalSolverKind
     SOLVER_EIGHT_POINT = 0, //!< normalized 8-point @cite Hartley2004 (over-parameterized)
     SOLVER_SEVEN_POINT = 1, //!< 7-point, up to three F (exact)
     SOLVER_FIVE_POINT = 2,  //!< 5-point, up to ten E (exact, needs the camera matrix)
-    /** the 5-point solver when a camera matrix is given, the 8-point one otherwise: with K the
-    5-point solver returned the fewest wrong motions of the three (doc/results.md) */
+    /** the 5-point solver when a camera matrix is given, the 7-point one otherwise: with K the
+    5-point solver returned the fewest wrong motions of the three (doc/results.md), without K the
+    7-point one more right F than the 8-point one (doc/f_only.md) */
     SOLVER_AUTO = 3
 };
 
@@ -117,7 +118,7 @@ enum Status
 /** @brief Parameters of the robust estimators, shaped like cv::UsacParams.
 
 Every field has a documented default; a default-constructed Params runs the Standard estimator
-with noise sigma 1 px, the 5-point solver when a camera matrix is given (the 8-point one
+with noise sigma 1 px, the 5-point solver when a camera matrix is given (the 7-point one
 otherwise), local optimisation and the ambiguity and uncertainty tests; asPublished() gives a
 method as the paper ran it. Construct from cv::UsacParams to carry over the fields the two share.
 */
