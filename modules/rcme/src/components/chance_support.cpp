@@ -2,9 +2,8 @@
 // found in the top-level directory of this distribution.
 
 // The a-contrario tests of a calibrated estimate: is its support more than chance gives? Two
-// questions, each as a number of false alarms (NFA, Moisan & Stival's a-contrario test: the
-// number of motions the data could have produced times the chance that one of them gathers this
-// support by accident; meaningful when at most 1):
+// questions, each a bound on the probability that chance alone gathers the support for any of the
+// models a run could have chosen (Bonferroni, as the loop's minimalSupport; level 0.05):
 // - the motion: its inliers against the share of *random pairings* of these very points that
 //   its epipolar band holds. Below that, the matches carry no motion (STATUS_POOR_QUALITY_INPUT);
 // - the translation: the inliers that move beyond the threshold once the rotation is removed
@@ -17,6 +16,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <vector>
 
 namespace cv {
 namespace rcme {
@@ -24,12 +25,14 @@ namespace detail {
 
 namespace {
 
-// A motion is determined by 5 correspondences, which give up to 10 motions (the five-point
-// solver's maximum): the data can produce at most C(n, 5) * 10 of them, however the loop,
-// local optimisation and refinement chose one.
+// The level of both tests over all the models a run could have chosen.
+constexpr double kLevel = 0.05;
+// A run tests at most Params::maxIterations samples of 5 points, each giving up to 10 motions
+// (the five-point solver's maximum); local optimisation refits them.
 constexpr int kMotionSamplePoints = 5;
 constexpr double kMotionsPerSample = 10;
-// Given the rotation, the translation direction is determined by 2 moving points.
+// Given the rotation, the translation direction is determined by 2 moving points: C(m, 2)
+// translations of m moving points.
 constexpr int kTranslationSamplePoints = 2;
 // Random pairings measured per call: each is the data paired with itself shifted by a share of
 // n (spread by the golden ratio, so that no shift is near another or near 0 or n: tracks stored
@@ -41,8 +44,8 @@ double logBinomialCoefficient(int n, int k)
     return std::lgamma(n + 1.0) - std::lgamma(k + 1.0) - std::lgamma(n - k + 1.0);
 }
 
-// log P(X >= successes), X ~ Binomial(trials, p): summed in logarithms from `successes` on,
-// since the tails that matter (1e-20 and below) are far beneath what 1 - cdf resolves.
+// log P(X >= successes), X ~ Binomial(trials, p): summed in logarithms from `successes` on (a
+// real pair's tail, 10^-400 and below, underflows in probabilities).
 double logBinomialTail(int trials, double p, int successes)
 {
     if (successes <= 0 || p >= 1.0)
@@ -65,15 +68,11 @@ double logBinomialTail(int trials, double p, int successes)
     return largest + std::log(sum);
 }
 
-/* log NFA of `support` of `points` correspondences with chance p each, for a model that
-`samplePoints` of them determine (`perSample` models each): the support beyond the sample's
-points against Binomial(points - samplePoints, p), times the number of such models. */
-double logFalseAlarms(int points, int support, double p, int samplePoints, double perSample)
+/* Bernstein's bound on log P(S - mu >= excess) for S a sum of independent Bernoulli variables of
+mean mu and variance `variance` (the moving points' chances differ, so S is not binomial). */
+double logBernsteinTail(double excess, double variance)
 {
-    if (points <= samplePoints)
-        return std::numeric_limits<double>::infinity();
-    return logBinomialCoefficient(points, samplePoints) + std::log(perSample) +
-           logBinomialTail(points - samplePoints, p, support - samplePoints);
+    return excess > 0 ? -excess * excess / (2.0 * (variance + excess / 3.0)) : 0.0;
 }
 
 // The share of random pairings (x1_i, x2_{i+s mod n}) within F's band, over kPairingShifts shifts.
@@ -99,7 +98,8 @@ struct TranslationSupport
 {
     int moving = 0;        //!< points beyond the threshold of the rotation's prediction
     int movingInliers = 0; //!< those of them within the motion's band
-    double chance = 0;     //!< mean chance of a moving point to fall in the band by its direction
+    double chance = 0;     //!< moving inliers expected when the directions are random
+    double variance = 0;   //!< their variance
 };
 
 /* The points that move beyond the threshold once the rotation is removed (x2 against
@@ -114,7 +114,6 @@ TranslationSupport translationSupport(const TwoViewData& data, const Motion& mot
     const Eigen::Matrix3d H = data.K * motion.R * data.Kinv;
     const double bandHalfWidth = std::sqrt(2.0) * data.threshold;
     TranslationSupport support;
-    double chanceSum = 0;
     for (size_t i = 0; i < data.points1.size(); ++i) {
         const Eigen::Vector3d predicted = H * homogeneous(data.points1[i]);
         if (!(predicted.z() > 0))
@@ -124,22 +123,25 @@ TranslationSupport translationSupport(const TwoViewData& data, const Motion& mot
             continue;
         ++support.moving;
         support.movingInliers += inliers[i] ? 1 : 0;
-        chanceSum += 2.0 / CV_PI * std::asin(std::min(1.0, bandHalfWidth / d));
+        const double p = 2.0 / CV_PI * std::asin(std::min(1.0, bandHalfWidth / d));
+        support.chance += p;
+        support.variance += p * (1.0 - p);
     }
-    if (support.moving > 0)
-        support.chance = chanceSum / support.moving;
     return support;
 }
 
 /* Without it, matches re-paired at random (an unusable frame) came back as a success: on KITTI's
-KLT tracks shuffled, 29-124 inliers of 1400-3500, 3-5 % of what a random pairing puts in the
-band of the selected motion (the loop's minimalSupport assumes an epipolar band spread evenly
-over the image, 1.6 %; an epipole in the image gathers more); and a camera standing still gave a
+KLT tracks shuffled, 29-124 inliers of 1400-3500: about the 2-4 % of random pairings that the
+selected motion's band holds (the loop's minimalSupport assumes an epipolar band spread evenly
+over the image, 1.6 %; an epipole among the points gathers more); and a camera standing still gave a
 motion fitted to the 1-2 % of ORB matches that jitter by a pixel (doc/vo_front_end.md). */
 class ChanceSupportTest final : public EstimationStage
 {
 public:
-    explicit ChanceSupportTest(bool testsTranslation) : testsTranslation_(testsTranslation) {}
+    ChanceSupportTest(int maxIterations, bool testsTranslation)
+        : maxIterations_(maxIterations), testsTranslation_(testsTranslation)
+    {
+    }
 
     StageOutcome run(const StageContext& context, const Estimate& estimate) override
     {
@@ -147,27 +149,37 @@ public:
         const Model& model = estimate.model;
         if (!model.motion || data.size() <= kMotionSamplePoints)
             return {};
-        const int support =
-            static_cast<int>(std::count(estimate.mask.begin(), estimate.mask.end(), 1));
+        const double logLevel = std::log(kLevel);
+        // the points in the motion's band, as the random pairings are counted (the final fit's
+        // mask may be narrower)
+        std::vector<uchar> band(data.points1.size());
+        const int support = countInSampsonBand(model.F, data.points1, data.points2,
+                                               data.threshold * data.threshold, band.data());
         const double chance = chanceOfPairing(data, model.F);
-        const double motionFalseAlarms =
-            logFalseAlarms(data.size(), support, chance, kMotionSamplePoints, kMotionsPerSample);
-        if (motionFalseAlarms > 0)
+        // P(chance gives this support to one of the run's motions)
+        const double motionChance = std::log(kMotionsPerSample * std::max(1, maxIterations_)) +
+                                    logBinomialTail(data.size() - kMotionSamplePoints, chance,
+                                                    support - kMotionSamplePoints);
+        if (motionChance > logLevel)
             return StageOutcome::rejecting(
                 STATUS_POOR_QUALITY_INPUT,
                 cv::format("the motion's %d inliers of %d are no more than chance gives: a "
                            "random pairing of these points falls within its band with "
-                           "probability %.4f (%.1f expected; log10 of the number of false "
-                           "alarms %.1f > 0)",
+                           "probability %.4f (%.1f expected; chance gives one of the run's "
+                           "motions as many with probability 10^%.1f > %.2f)",
                            support, data.size(), chance, chance * data.size(),
-                           motionFalseAlarms / std::log(10.0)),
+                           motionChance / std::log(10.0), kLevel),
                 model);
         if (!testsTranslation_)
             return {};
-        const TranslationSupport moving = translationSupport(data, *model.motion, estimate.mask);
-        const double translationFalseAlarms = logFalseAlarms(
-            moving.moving, moving.movingInliers, moving.chance, kTranslationSamplePoints, 1.0);
-        if (translationFalseAlarms > 0)
+        const TranslationSupport moving = translationSupport(data, *model.motion, band);
+        // P(chance aligns this many moving points with one of their C(m, 2) translations)
+        const double translationChance =
+            moving.moving < kTranslationSamplePoints
+                ? 0.0
+                : logBinomialCoefficient(moving.moving, kTranslationSamplePoints) +
+                      logBernsteinTail(moving.movingInliers - moving.chance, moving.variance);
+        if (translationChance > logLevel)
             return StageOutcome::rejecting(
                 STATUS_UNDETERMINED_MOTION,
                 cv::format("the translation is not determined: %d points move beyond the "
@@ -175,20 +187,21 @@ public:
                            "motion's epipolar lines, no more than random directions give (%.1f "
                            "expected); the other inliers fit any translation (a camera standing "
                            "still, or too little parallax)",
-                           moving.moving, moving.movingInliers, moving.chance * moving.moving),
+                           moving.moving, moving.movingInliers, moving.chance),
                 model);
         return {};
     }
 
 private:
+    int maxIterations_;
     bool testsTranslation_;
 };
 
 } // namespace
 
-std::unique_ptr<EstimationStage> createChanceSupportTest(bool testsTranslation)
+std::unique_ptr<EstimationStage> createChanceSupportTest(int maxIterations, bool testsTranslation)
 {
-    return std::make_unique<ChanceSupportTest>(testsTranslation);
+    return std::make_unique<ChanceSupportTest>(maxIterations, testsTranslation);
 }
 
 } // namespace detail

@@ -167,7 +167,8 @@ EstimatorComponents createEstimator(const Params& params, const TwoViewData& dat
         c.tracksRivals = true;
     }
     if (data.calibrated)
-        c.stages.push_back(createChanceSupportTest(params.maxTranslationStdDeg > 0));
+        c.stages.push_back(
+            createChanceSupportTest(params.maxIterations, params.maxTranslationStdDeg > 0));
     if (data.calibrated && (params.maxRotationStdDeg > 0 || params.maxTranslationStdDeg > 0))
         c.stages.push_back(
             createUncertaintyBound(params.maxRotationStdDeg, params.maxTranslationStdDeg));
