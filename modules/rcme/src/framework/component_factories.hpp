@@ -88,6 +88,9 @@ std::unique_ptr<EstimationStage> createFinalFit();
 std::unique_ptr<EstimationStage> createRivalMotionDecision(double margin);
 //! After the rival motion decision: the same rivals weighed at the data's measured noise.
 std::unique_ptr<EstimationStage> createRivalSelectionAtDataNoise();
+/** Calibrated data: the estimate's support against chance over the motions of maxIterations
+samples, and with `testsTranslation` (Params::maxTranslationStdDeg > 0) its translation's. */
+std::unique_ptr<EstimationStage> createChanceSupportTest(int maxIterations, bool testsTranslation);
 /** Params::useEstimatedNoise, calibrated data: the reported covariance raised to the final
 inliers' residual-based (sandwich) one where it exceeds it (residual_covariance.cpp). */
 std::unique_ptr<EstimationStage> createResidualCovariance();

@@ -169,6 +169,9 @@ EstimatorComponents createEstimator(const Params& params, const TwoViewData& dat
         c.stages.push_back(createRivalSelectionAtDataNoise());
         c.tracksRivals = true;
     }
+    if (data.calibrated)
+        c.stages.push_back(
+            createChanceSupportTest(params.maxIterations, params.maxTranslationStdDeg > 0));
     if (data.calibrated && (params.maxRotationStdDeg > 0 || params.maxTranslationStdDeg > 0))
         c.stages.push_back(
             createUncertaintyBound(params.maxRotationStdDeg, params.maxTranslationStdDeg));

@@ -93,8 +93,10 @@ enum Status
 {
     STATUS_SUCCESS = 0, //!< a model was found and is returned
     /** no hypothesis passed the method's acceptance tests: for RCME the inlier-set quality and
-    size tests, for every method a support no larger than chance would give. The input is too
-    poor to trust any motion from it (the paper's PQI). */
+    size tests, for every method a support no larger than chance would give (with a camera
+    matrix also the final motion's inliers against the share of random pairings of these points
+    that its epipolar band holds). The input is too poor to trust any motion from it (the
+    paper's PQI). */
     STATUS_POOR_QUALITY_INPUT = 1,
     STATUS_NOT_ENOUGH_POINTS = 2, //!< fewer valid correspondences than the minimal solver needs
     /** every sample, or the selected model, was degenerate: points identical or collinear; a
@@ -110,7 +112,10 @@ enum Status
     /** with a camera matrix, the inliers do not determine the motion to the accuracy asked: a
     distinct motion (rotation more than 5 deg or translation direction more than 15 deg away)
     explains them about as well (Params::ambiguityMargin), or the motion's propagated standard
-    deviation exceeds Params::maxRotationStdDeg or Params::maxTranslationStdDeg. The motion
+    deviation exceeds Params::maxRotationStdDeg or Params::maxTranslationStdDeg, or (with
+    maxTranslationStdDeg > 0) the points that move beyond the threshold once the rotation is
+    removed lie on the motion's epipolar lines no more often than random directions of their
+    motion would (a camera standing still: the translation is not determined). The motion
     turned down is in Report::rejectedR, rejectedT. */
     STATUS_UNDETERMINED_MOTION = 5
 };
@@ -255,8 +260,9 @@ struct CV_EXPORTS_W_SIMPLE Params
     the residuals' sandwich, so a success's Report::rotationStdDeg can exceed it. */
     CV_PROP_RW double maxRotationStdDeg;
     /** The same for the translation direction (Report::translationStdDeg), degrees. <= 0
-    disables it. Default 8 deg, chosen with maxRotationStdDeg; the paper's experiments: 0. As
-    maxRotationStdDeg, it bounds the model-based standard deviation. */
+    disables it, and with it the test that the moving points determine the translation
+    (#STATUS_UNDETERMINED_MOTION). Default 8 deg, chosen with maxRotationStdDeg; the paper's
+    experiments: 0. As maxRotationStdDeg, it bounds the model-based standard deviation. */
     CV_PROP_RW double maxTranslationStdDeg;
     /** For #SAMPLER_PROSAC: one score per correspondence, higher is better (e.g. the negated
     ratio of the two best descriptor distances), CV_32F or CV_64F. Empty (default): the points
