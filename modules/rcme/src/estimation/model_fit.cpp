@@ -130,15 +130,6 @@ void normalEquations(const TwoViewData& data, const std::vector<int>& inliers,
     }
 }
 
-// The fit has converged when a step lowers the cost, or would by its linearization, by less than
-// this share of it. The cost of n inliers is about n sigma^2 (less, cut by the band), and a step
-// that lowers it by e sigma^2 moves the model by about sqrt(e) of its standard deviation: 0.001
-// of it at n = 1000 (the swapped views' motions still agree within 1e-4 deg,
-// test_properties.cpp). Before (1e-12, and only on a step taken) the last iterations of most fits
-// moved nothing one can measure, and the last one raised the damping through a dozen rejected
-// steps, each a pass over the points (doc/performance.md).
-constexpr double kConvergedDecrease = 1e-9;
-
 // Levenberg-Marquardt with multiplicative damping on the diagonal. Returns the final cost.
 template <class Problem>
 double levenbergMarquardt(const TwoViewData& data, const std::vector<int>& inliers,
@@ -158,13 +149,10 @@ double levenbergMarquardt(const TwoViewData& data, const std::vector<int>& inlie
             const Eigen::Matrix<double, P, 1> delta = A.ldlt().solve(-Jtr);
             if (!delta.allFinite())
                 break;
-            // Converged (the step's predicted decrease): no pass over the points to confirm it.
-            if (-(Jtr.dot(delta) + 0.5 * delta.dot(JtJ * delta)) * 2.0 <= kConvergedDecrease * cost)
-                break;
             const double candidateCost = sampsonCost(data, inliers, problem.propose(delta));
             if (candidateCost < cost) {
                 problem.accept();
-                improved = cost - candidateCost > kConvergedDecrease * cost;
+                improved = cost - candidateCost > 1e-12 * cost;
                 cost = candidateCost;
                 damping = std::max(1e-9, damping * 0.1);
                 break;
