@@ -10,6 +10,7 @@
 #ifdef RCME_STANDALONE_TESTS
 
 #include "framework/component_factories.hpp"
+#include "framework/model_space.hpp"
 #include "geometry/epipolar.hpp"
 #include "geometry/motion_parameterization.hpp"
 #include "geometry/statistics.hpp"
@@ -234,7 +235,7 @@ TEST(Rcme_GoldStandardRefiner, improves_a_perturbed_estimate)
             return c;
         };
         const double before = cost(model.F);
-        auto refiner = createGoldStandardRefiner(30);
+        auto refiner = createGoldStandardRefiner(30, createModelSpace(data));
         ASSERT_TRUE(refiner->refine(data, all, model));
         const double after = cost(model.F);
         EXPECT_LT(after, 0.1 * before);

@@ -206,7 +206,7 @@ TEST(Rcme_Mlesac, runs_in_the_ransac_loop)
         c.sampler = createUniformSampler(data.size(), 8, 0);
         c.termination = createAdaptiveTermination(params.confidence, params.maxIterations, 8);
         c.scorer = createMlesacScorer(data, 8, params.maxIterations);
-        c.refiner = createGoldStandardRefiner(params.refineIterations);
+        c.refiner = createGoldStandardRefiner(params.refineIterations, c.space);
         c.stages.push_back(createCandidateSelection());
         c.stages.push_back(createSelectedModelRefinement());
         const Estimate result = estimateModel(data, c).estimate;

@@ -181,7 +181,8 @@ TEST(Rcme_Boxes, quality_test_sign_tight_passes_loose_fails)
     Model tight = trueMotion(s, data);
     std::vector<int> all(inliers.points1.size());
     std::iota(all.begin(), all.end(), 0);
-    ASSERT_TRUE(fitModelOn(inliers, all, 0, tight)); // covariance from ~250 inliers: tight
+    ASSERT_TRUE(fitModelOn(inliers, ModelForm::kMotion, all, 0,
+                           tight)); // covariance from ~250 inliers: tight
     ASSERT_EQ(tight.uncertaintyDof, 5);
     Model loose = tight;
     loose.covariance *= 1e8; // inliers' variances far above the noise floor
@@ -261,7 +262,7 @@ TEST(Rcme_Boxes, propagated_covariance_matches_monte_carlo)
     TwoViewData exact = sceneData(truth, true, true);
     const std::vector<int> sample = {3, 29, 61, 97, 130, 166, 201, 240};
     Model atTruth = trueMotion(truth, exact);
-    ASSERT_TRUE(fitModelOn(exact, sample, 0, atTruth));
+    ASSERT_TRUE(fitModelOn(exact, ModelForm::kMotion, sample, 0, atTruth));
     ASSERT_EQ(atTruth.uncertaintyDof, 5);
     const Eigen::Matrix<double, 5, 5> predicted = atTruth.covariance.topLeftCorner<5, 5>();
 
@@ -277,7 +278,7 @@ TEST(Rcme_Boxes, propagated_covariance_matches_monte_carlo)
                 Eigen::Vector2d(rng.gaussian(1), rng.gaussian(1));
         }
         Model fitted = trueMotion(truth, exact);
-        if (!fitModelOn(noisy, sample, 20, fitted))
+        if (!fitModelOn(noisy, ModelForm::kMotion, sample, 20, fitted))
             continue;
         // The estimate in the tangent space at the truth.
         const Eigen::AngleAxisd delta(atTruth.motion->R.transpose() * fitted.motion->R);
@@ -353,7 +354,8 @@ TEST(Rcme_Boxes, propagated_variances_of_a_block_equal_those_of_one_point)
         std::vector<int> inliers;
         for (int i = 0; i < 40; ++i)
             inliers.push_back(i);
-        ASSERT_TRUE(fitModelOn(data, inliers, 0, model));
+        ASSERT_TRUE(fitModelOn(data, calibrated ? ModelForm::kMotion : ModelForm::kFundamental,
+                               inliers, 0, model));
         ASSERT_EQ(model.uncertaintyDof, calibrated ? 5 : 7);
         if (!calibrated) {
             // Forward motion with the epipoles at the origin, where F x1 and F^T x2 vanish
@@ -559,7 +561,8 @@ TEST(Rcme_Boxes, sprt_keeps_the_true_model_and_rejects_bad_ones_early)
     const TwoViewData inliers = sceneData(s, true, true);
     // The true motion with the covariance a minimal sample would give it.
     Model truth = trueMotion(s, data);
-    ASSERT_TRUE(fitModelOn(inliers, {0, 17, 35, 52, 70, 88, 105, 123}, 0, truth));
+    ASSERT_TRUE(
+        fitModelOn(inliers, ModelForm::kMotion, {0, 17, 35, 52, 70, 88, 105, 123}, 0, truth));
     const Params params = rcmeParams(0, METHOD_COV_RANSAC);
     const double meanChecked = expectSprtKeepsTruthAndRejectsBad(
         data, truth, wrongMotion(truth, data),

@@ -30,7 +30,7 @@ Model polishRejected(const StageContext& context, Model model)
     std::vector<int> inliers;
     maskIndices(mask, inliers);
     Model fitted = model;
-    if (fitModelOn(data, inliers, kFitIterations, fitted))
+    if (fitModelOn(data, context.space.formOf(fitted), inliers, kFitIterations, fitted))
         model = fitted;
     context.space.liftOn(data, mask, model, /*redecide=*/true);
     return model;

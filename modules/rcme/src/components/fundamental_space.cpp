@@ -23,6 +23,8 @@ public:
         return true;
     }
 
+    ModelForm formOf(const Model&) const override { return ModelForm::kFundamental; }
+
     bool liftOn(const TwoViewData&, const std::vector<uchar>&, Model&, bool) const override
     {
         return true;

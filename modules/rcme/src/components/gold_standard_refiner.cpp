@@ -6,6 +6,7 @@
 
 #include "estimation/model_fit.hpp"
 #include "framework/component_factories.hpp"
+#include "framework/model_space.hpp"
 #include "geometry/epipolar.hpp"
 #include "geometry/motion_parameterization.hpp"
 
@@ -18,12 +19,15 @@ namespace {
 class GoldStandardRefiner final : public Refiner
 {
 public:
-    explicit GoldStandardRefiner(int maxIterations) : maxIterations_(maxIterations) {}
+    GoldStandardRefiner(int maxIterations, std::shared_ptr<const ModelSpace> space)
+        : space_(std::move(space)), maxIterations_(maxIterations)
+    {
+    }
 
     bool refine(const TwoViewData& data, const std::vector<uchar>& mask, Model& model) override
     {
         maskIndices(mask, inliers_);
-        return fitModelOn(data, inliers_, maxIterations_, model);
+        return fitModelOn(data, space_->formOf(model), inliers_, maxIterations_, model);
     }
 
     // The final covariance (setFinalUncertainty) is that of least squares on the points inside
@@ -77,7 +81,8 @@ private:
         }
         maskIndices(*chosen, inliers_);
         Model fitted = model;
-        if (!fitFinalModelOn(data, inliers_, maxIterations_, fitted, confirmed_))
+        const ModelForm form = space_->formOf(model);
+        if (!fitFinalModelOn(data, form, inliers_, maxIterations_, fitted, confirmed_))
             return false;
         // Where the points do not determine the motion (a pure rotation leaves t free, when the
         // degeneracy test is off), the refit may turn t into the decomposition that puts the
@@ -86,7 +91,7 @@ private:
                                                    data.points2, data.Kinv, &selection, nullptr) <
                                 static_cast<int>(inliers_.size())) {
             fitted = model;
-            if (!fitFinalModelOn(data, inliers_, 0, fitted, confirmed_))
+            if (!fitFinalModelOn(data, form, inliers_, 0, fitted, confirmed_))
                 return false;
         }
         model = fitted;
@@ -95,6 +100,7 @@ private:
 
     // Reused, and sized for every point at once (maskIndices): local optimisation refines inside
     // the hypothesis loop, which must not allocate.
+    std::shared_ptr<const ModelSpace> space_;
     std::vector<uchar> selection_, band_, inFront_;
     std::vector<int> confirmed_, finalInliers_;
     int maxIterations_;
@@ -103,9 +109,10 @@ private:
 
 } // namespace
 
-std::unique_ptr<Refiner> createGoldStandardRefiner(int maxIterations)
+std::unique_ptr<Refiner> createGoldStandardRefiner(int maxIterations,
+                                                   std::shared_ptr<const ModelSpace> space)
 {
-    return std::make_unique<GoldStandardRefiner>(maxIterations);
+    return std::make_unique<GoldStandardRefiner>(maxIterations, std::move(space));
 }
 
 } // namespace detail

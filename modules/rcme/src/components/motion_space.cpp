@@ -46,7 +46,7 @@ bool decideMotionOnInliers(const TwoViewData& data, Scorer& scorer, Fit& fit)
     if (model.uncertaintyDof > 0) {
         std::vector<int> inliers;
         maskIndices(fit.inliers, inliers);
-        fitModelOn(data, inliers, 0, model);
+        fitModelOn(data, ModelForm::kMotion, inliers, 0, model);
     }
     fit.score = scorer.score(data, model);
     return true;
@@ -101,6 +101,13 @@ public:
                         std::vector<Eigen::Vector2d>& points2) const override
     {
         return model.motion || recoverMotionFromSample(data, sample, model, points1, points2);
+    }
+
+    // A hypothesis of an F solver, and the selected model until settleSelected lifts it, is still
+    // an F (local optimisation and the first rounds of refinement fit it as one).
+    ModelForm formOf(const Model& model) const override
+    {
+        return model.motion ? ModelForm::kMotion : ModelForm::kFundamental;
     }
 
     bool liftOn(const TwoViewData& data, const std::vector<uchar>& inliers, Model& model,

@@ -64,7 +64,7 @@ MotionSupport refitOnOwnPoints(const TwoViewData& data, Model& motion, std::vect
         markWithinBand(data, motion.F, within); // a round fits the band's points, in front or not
         maskIndices(within, inliers);
         Model fitted = motion;
-        if (fitModelOn(data, inliers, kFitIterations, fitted))
+        if (fitModelOn(data, ModelForm::kMotion, inliers, kFitIterations, fitted))
             motion = fitted;
     }
     return motionSupport(data, motion, within, inFront);

@@ -47,7 +47,8 @@ public:
             // Cheirality decided by the sample alone: the hypothesis knows nothing else.
             if (!space_->liftHypothesis(data, sample, model, samplePoints1_, samplePoints2_))
                 continue;
-            if (!fitModelOn(data, sample, fitIterations_, model) || model.uncertaintyDof == 0)
+            if (!fitModelOn(data, space_->formOf(model), sample, fitIterations_, model) ||
+                model.uncertaintyDof == 0)
                 continue;
             models[kept++] = model;
         }

@@ -6,6 +6,7 @@
 #include "estimation/model_fit.hpp"
 #include "framework/component_factories.hpp"
 #include "framework/model.hpp"
+#include "framework/model_space.hpp"
 #include "geometry/epipolar.hpp"
 
 #include <opencv2/core/eigen.hpp>
@@ -117,7 +118,8 @@ Mat modelOfAgreeingPoints(const TwoViewData& data, bool stackSolutions)
     Model refined = best;
     std::vector<int> all(static_cast<size_t>(n));
     std::iota(all.begin(), all.end(), 0);
-    if (fitModelOn(data, all, kRefineIterations, refined) &&
+    if (fitModelOn(data, createModelSpace(data)->formOf(refined), all, kRefineIterations,
+                   refined) &&
         costWhenAllAgree(data, refined) < std::numeric_limits<double>::infinity())
         best = refined;
     return modelMatrix(data, best);

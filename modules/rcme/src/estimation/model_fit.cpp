@@ -3,10 +3,11 @@
 
 // The library's least-squares service: the Gold Standard maximum-likelihood fit (Hartley &
 // Zisserman, alg. 11.3) in its first-order form, Levenberg-Marquardt on the Sampson distances
-// over a minimal parameterization of the model as it is: the 5-DoF motion when it has one, the
-// 7-DoF F otherwise. The Gauss-Newton matrix at the optimum also gives the model's first-order
-// covariance, sigma^2 (J^T J)^-1 (on a minimal sample: the paper's Sigma_p). Used by the
-// refiner (box 4 of Fig. 1), RCME's model instantiation and the ambiguity test's refits.
+// over a minimal parameterization of the model in the form the caller names (ModelForm; the model
+// space chooses it): the 5-DoF motion or the 7-DoF F. The Gauss-Newton matrix at the optimum also
+// gives the model's first-order covariance, sigma^2 (J^T J)^-1 (on a minimal sample: the paper's
+// Sigma_p). Used by the refiner (box 4 of Fig. 1), RCME's model instantiation and the ambiguity
+// test's refits.
 
 #include "estimation/model_fit.hpp"
 #include "geometry/epipolar.hpp"
@@ -353,11 +354,12 @@ void fitProblem(const TwoViewData& data, const std::vector<int>& indices, int ma
 }
 
 // `confirmed` (final estimate only): the points the fit ends up using.
-bool fitModel(const TwoViewData& data, const std::vector<int>& indices, int maxIterations,
-              Uncertainty uncertainty, Model& model, std::vector<int>* confirmed = nullptr)
+bool fitModel(const TwoViewData& data, ModelForm form, const std::vector<int>& indices,
+              int maxIterations, Uncertainty uncertainty, Model& model,
+              std::vector<int>* confirmed = nullptr)
 {
-    if (model.motion) {
-        CV_Assert(data.calibrated);
+    if (form == ModelForm::kMotion) {
+        CV_Assert(data.calibrated && model.motion);
         if (indices.size() < static_cast<size_t>(MotionProblem::kDof))
             return false;
         Motion& motion = *model.motion;
@@ -393,16 +395,17 @@ bool usesEstimatedNoise(const TwoViewData& data, double noiseSigma, int residual
     return data.useEstimatedNoise && residualDof >= kMinNoiseDof && std::isfinite(noiseSigma);
 }
 
-bool fitModelOn(const TwoViewData& data, const std::vector<int>& indices, int maxIterations,
-                Model& model)
+bool fitModelOn(const TwoViewData& data, ModelForm form, const std::vector<int>& indices,
+                int maxIterations, Model& model)
 {
-    return fitModel(data, indices, maxIterations, Uncertainty::kStatedNoise, model);
+    return fitModel(data, form, indices, maxIterations, Uncertainty::kStatedNoise, model);
 }
 
-bool fitFinalModelOn(const TwoViewData& data, const std::vector<int>& indices, int maxIterations,
-                     Model& model, std::vector<int>& confirmed)
+bool fitFinalModelOn(const TwoViewData& data, ModelForm form, const std::vector<int>& indices,
+                     int maxIterations, Model& model, std::vector<int>& confirmed)
 {
-    return fitModel(data, indices, maxIterations, Uncertainty::kFinalEstimate, model, &confirmed);
+    return fitModel(data, form, indices, maxIterations, Uncertainty::kFinalEstimate, model,
+                    &confirmed);
 }
 
 } // namespace detail

@@ -12,19 +12,20 @@ namespace cv {
 namespace rcme {
 namespace detail {
 
-/** Gold Standard fit of `model` (motion if it has one, else F) on the points `indices`, with the
+/** Gold Standard fit of `model` as `form` (ModelForm::kMotion: its motion, which it must have;
+ModelForm::kFundamental: its F, the motion untouched) on the points `indices`, with the
 first-order covariance of the result at the stated sigma (Model::uncertaintyDof and friends; left
 at 0 when the information matrix is ill-conditioned). False when there are too few points to
 fit. */
-bool fitModelOn(const TwoViewData& data, const std::vector<int>& indices, int maxIterations,
-                Model& model);
+bool fitModelOn(const TwoViewData& data, ModelForm form, const std::vector<int>& indices,
+                int maxIterations, Model& model);
 
 /** The final estimate's fit: as fitModelOn, then refitted without the inliers the others do not
 confirm (leverage, studentized residual) when enough remain; `confirmed` gets the points used,
 and the covariance is the final estimate's (the estimated noise, truncation-corrected; see
 Report::covariance). */
-bool fitFinalModelOn(const TwoViewData& data, const std::vector<int>& indices, int maxIterations,
-                     Model& model, std::vector<int>& confirmed);
+bool fitFinalModelOn(const TwoViewData& data, ModelForm form, const std::vector<int>& indices,
+                     int maxIterations, Model& model, std::vector<int>& confirmed);
 
 /** Whether the final estimate's covariance is computed with the noise estimated from its
 residuals (`noiseSigma`, Model::noiseSigma) rather than the stated sigma: Params::useEstimatedNoise

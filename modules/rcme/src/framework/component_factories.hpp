@@ -27,7 +27,8 @@ std::unique_ptr<Termination> createAdaptiveTermination(double confidence, int ma
                                                        int sampleSize,
                                                        double cleanSampleSuccessRate = 1.0);
 std::unique_ptr<Termination> createExactTermination(int iterations);
-std::unique_ptr<Refiner> createGoldStandardRefiner(int maxIterations);
+std::unique_ptr<Refiner> createGoldStandardRefiner(int maxIterations,
+                                                   std::shared_ptr<const ModelSpace> space);
 
 //! 7-point solver for F (Hartley & Zisserman 11.1.2): up to three rank-2 F per sample, exact
 //! (7 parameters for 7 DoF). With calibrated data the solutions are projected to E when

@@ -54,6 +54,11 @@ bool usesSprt(const Params& params, const TwoViewData& data)
 
 } // namespace
 
+std::unique_ptr<ModelSpace> createModelSpace(const TwoViewData& data)
+{
+    return data.calibrated ? createMotionSpace() : createFundamentalSpace();
+}
+
 // A few steps suffice: the refit only has to reach its basin's bottom, and it runs often.
 constexpr int kLocalOptimizationIterations = 5;
 // Inner minimal samples per round of inner sampling (doc/experiments_archive.md, "Inner sampling":
@@ -74,7 +79,7 @@ constexpr double kInnerSamplingSuccessRate = 0.1;
 EstimatorComponents createEstimator(const Params& params, const TwoViewData& data)
 {
     EstimatorComponents c;
-    c.space = data.calibrated ? createMotionSpace() : createFundamentalSpace();
+    c.space = createModelSpace(data);
     const bool uncertain = params.method == METHOD_RCME || params.method == METHOD_PRCME ||
                            params.method == METHOD_COV_RANSAC;
     // The methods that propagate uncertainty need a motion per hypothesis when K is known (its
@@ -145,9 +150,9 @@ EstimatorComponents createEstimator(const Params& params, const TwoViewData& dat
                                         : createBandSprtVerifier(data, seed));
     }
     if (params.refine && params.refineIterations > 0)
-        c.refiner = createGoldStandardRefiner(params.refineIterations);
+        c.refiner = createGoldStandardRefiner(params.refineIterations, c.space);
     if (params.localOptimization) {
-        c.localOptimizer = createGoldStandardRefiner(kLocalOptimizationIterations);
+        c.localOptimizer = createGoldStandardRefiner(kLocalOptimizationIterations, c.space);
         c.innerSampling.samplesPerRound = kInnerSamplesPerRound;
         c.innerSampling.confidence = params.confidence;
         c.innerSampling.successRate =

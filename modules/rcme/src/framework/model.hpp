@@ -22,6 +22,16 @@ struct Motion
     Eigen::Vector3d t = Eigen::Vector3d::Zero();
 };
 
+/** The two kinds of model, each refined in its own parameters (estimation/model_fit.hpp): a
+fundamental matrix (7 DoF, in Hartley-normalized coordinates) or a camera motion (5 DoF; E and F
+follow from it). Which one a model is refined as is the model space's choice
+(ModelSpace::formOf). */
+enum class ModelForm
+{
+    kFundamental,
+    kMotion
+};
+
 //! One hypothesis (and, after selection, the estimate).
 struct Model
 {

@@ -29,6 +29,10 @@ public:
                                 Model& model, std::vector<Eigen::Vector2d>& points1,
                                 std::vector<Eigen::Vector2d>& points2) const = 0;
 
+    /** The form a model is refined as (estimation/model_fit.hpp): the space's own, or, for a
+    model that has not been given it yet, the form it has. */
+    virtual ModelForm formOf(const Model& model) const = 0;
+
     /** Gives a model the form of the space on `inliers` (a motion: E decomposed by cheirality on
     them, again when `redecide` even if it has one); false when it has none. */
     virtual bool liftOn(const TwoViewData& data, const std::vector<uchar>& inliers, Model& model,
@@ -55,6 +59,8 @@ public:
 
 std::unique_ptr<ModelSpace> createFundamentalSpace();
 std::unique_ptr<ModelSpace> createMotionSpace();
+//! The space of the data: a motion with K, else F.
+std::unique_ptr<ModelSpace> createModelSpace(const TwoViewData& data);
 
 } // namespace detail
 } // namespace rcme
