@@ -59,7 +59,7 @@ TEST(Rcme_Standard, recovers_pose_on_well_conditioned_scenes)
     EXPECT_LE(failures, 5);
 }
 
-// SOLVER_AUTO is the 5-point solver with K and the 8-point one without: the same seed gives the
+// SOLVER_AUTO is the 5-point solver with K and the 7-point one without: the same seed gives the
 // same estimate as naming that solver, and a different one from the other solver.
 TEST(Rcme_Standard, auto_solver_is_five_point_with_k_and_seven_point_without)
 {
