@@ -18,6 +18,8 @@
 
 #include <opencv2/core/eigen.hpp>
 
+#include <limits>
+
 namespace opencv_test {
 namespace {
 
@@ -281,6 +283,20 @@ TEST(Rcme_Statistics, binomial_tail_bound_small_and_large_samples)
     // Large samples, where (1 - p)^n underflows: mean + 3.9 standard deviations.
     EXPECT_EQ(binomialTailBound(100000, 0.01, 5e-5), 1126);
     EXPECT_EQ(binomialTailBound(1000000, 0.01, 5e-5), 10390);
+}
+
+TEST(Rcme_Statistics, log_binomial_coefficient_and_tail)
+{
+    // Values from Python's math.lgamma and exact integer sums (fractions.Fraction).
+    EXPECT_NEAR(logBinomialCoefficient(100, 50), 66.78384165201737, 1e-10);
+    EXPECT_NEAR(logBinomialCoefficient(200, 2), 9.89847501071256, 1e-12);
+    EXPECT_NEAR(logBinomialCoefficient(1000000, 500000), 693140.047013063, 1e-6);
+    EXPECT_EQ(logBinomialCoefficient(7, 0), 0.0);
+    // P(X >= 16) = 0.03989 for Binomial(100, 0.1); a tail far below double's range.
+    EXPECT_NEAR(logBinomialTail(100, 0.1, 16), -3.221616399036225, 1e-9);
+    EXPECT_NEAR(logBinomialTail(1000, 0.01, 200), -432.0878226388231, 1e-8);
+    EXPECT_EQ(logBinomialTail(100, 0.1, 0), 0.0);
+    EXPECT_EQ(logBinomialTail(100, 0.1, 101), -std::numeric_limits<double>::infinity());
 }
 
 // A subset is the same problem (camera, noise, bounds) on fewer correspondences, in their order;

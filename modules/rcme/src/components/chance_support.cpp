@@ -13,6 +13,7 @@
 #include "framework/component_factories.hpp"
 #include "geometry/epipolar.hpp"
 #include "geometry/residual_bands.hpp"
+#include "geometry/statistics.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -38,35 +39,6 @@ constexpr int kTranslationSamplePoints = 2;
 // n (spread by the golden ratio, so that no shift is near another or near 0 or n: tracks stored
 // in image order would otherwise pair a point with a neighbour).
 constexpr int kPairingShifts = 8;
-
-double logBinomialCoefficient(int n, int k)
-{
-    return std::lgamma(n + 1.0) - std::lgamma(k + 1.0) - std::lgamma(n - k + 1.0);
-}
-
-// log P(X >= successes), X ~ Binomial(trials, p): summed in logarithms from `successes` on (a
-// real pair's tail, 10^-400 and below, underflows in probabilities).
-double logBinomialTail(int trials, double p, int successes)
-{
-    if (successes <= 0 || p >= 1.0)
-        return 0.0;
-    if (successes > trials || p <= 0.0)
-        return -std::numeric_limits<double>::infinity();
-    const double logP = std::log(p), logQ = std::log1p(-p);
-    double largest = -std::numeric_limits<double>::infinity(), sum = 0.0;
-    for (int j = successes; j <= trials; ++j) {
-        const double term = logBinomialCoefficient(trials, j) + j * logP + (trials - j) * logQ;
-        if (term > largest) {
-            sum = sum * std::exp(largest - term) + 1.0;
-            largest = term;
-        } else {
-            sum += std::exp(term - largest);
-            if (term < largest - 40.0) // the terms fall off geometrically past the mode
-                break;
-        }
-    }
-    return largest + std::log(sum);
-}
 
 /* Bernstein's bound on log P(S - mu >= excess) for S a sum of independent Bernoulli variables of
 mean mu and variance `variance` (the moving points' chances differ, so S is not binomial). */

@@ -27,6 +27,22 @@ double lowerRegularizedGamma(double a, double x)
     return std::min(1.0, sum * std::exp(-x + a * std::log(x)) / std::tgamma(a));
 }
 
+// log n!: summed below 128, Stirling's series above it (its next term is below 1e-20 there).
+// Not std::lgamma: it writes the global signgam, a data race between threads (see above).
+double logFactorial(int n)
+{
+    if (n < 128) {
+        double sum = 0;
+        for (int i = 2; i <= n; ++i)
+            sum += std::log(double(i));
+        return sum;
+    }
+    const double x = n, inverse = 1.0 / x, inverse2 = inverse * inverse;
+    return x * std::log(x) - x + 0.5 * std::log(2.0 * CV_PI * x) +
+           inverse *
+               (1.0 / 12 - inverse2 * (1.0 / 360 - inverse2 * (1.0 / 1260 - inverse2 / 1680)));
+}
+
 } // namespace
 
 double normalQuantile(double p)
@@ -68,6 +84,34 @@ int binomialTailBound(int trials, double p, double level)
         logPmf += logRatio + std::log((trials - k) / (k + 1.0));
     }
     return trials + 1;
+}
+
+double logBinomialCoefficient(int n, int k)
+{
+    CV_Assert(k >= 0 && k <= n);
+    return logFactorial(n) - logFactorial(k) - logFactorial(n - k);
+}
+
+double logBinomialTail(int trials, double p, int successes)
+{
+    if (successes <= 0 || p >= 1.0)
+        return 0.0;
+    if (successes > trials || p <= 0.0)
+        return -std::numeric_limits<double>::infinity();
+    const double logP = std::log(p), logQ = std::log1p(-p);
+    double largest = -std::numeric_limits<double>::infinity(), sum = 0.0;
+    for (int j = successes; j <= trials; ++j) {
+        const double term = logBinomialCoefficient(trials, j) + j * logP + (trials - j) * logQ;
+        if (term > largest) {
+            sum = sum * std::exp(largest - term) + 1.0;
+            largest = term;
+        } else {
+            sum += std::exp(term - largest);
+            if (term < largest - 40.0) // the terms fall off geometrically past the mode
+                break;
+        }
+    }
+    return largest + std::log(sum);
 }
 
 double samplesForConfidence(double confidence, double goodSample)

@@ -18,6 +18,13 @@ double chiSquareQuantile(double p, int dof);
 exceeds only with probability `level`. */
 int binomialTailBound(int trials, double p, double level);
 
+//! log C(n, k), for 0 <= k <= n.
+double logBinomialCoefficient(int n, int k);
+
+/** log P(X >= successes), X ~ Binomial(trials, p), summed in logarithms (a real pair's tail,
+10^-400 and below, underflows in probabilities). */
+double logBinomialTail(int trials, double p, int successes);
+
 /** RANSAC's bound: how many independent samples hold at least one good sample with probability
 `confidence`, when each is good with probability `goodSample`: log(1 - confidence) /
 log(1 - goodSample); +infinity when goodSample <= 0. */
