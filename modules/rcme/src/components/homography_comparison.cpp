@@ -101,18 +101,18 @@ bool homographyOfFour(const std::vector<Point2d>& from, const std::vector<Point2
     return H.allFinite();
 }
 
-/* Cheap evidence that no homography explains the candidates: the largest share that the
-homography of one of kScreenSamples random four-point samples of each pool (below) holds within
-`transferThreshold` (of at most kScreenedPoints candidates, evenly spaced), among the points it
-or F (`heldByF`) holds, as the comparison counts them. H wins the comparison only when it holds most
-of those (compareWithHomography; on KITTI-01 16-21 a wrong F lost to an H holding about two
-thirds of the candidates), and from a share of 0.6 on, kScreenSamples samples find one of its
-all-inlier samples with probability 0.999; a minimal sample's H holds fewer than the fitted one, so
-the screen only says "no" below half. Half the cost of the test on real pairs, where no homography
-holds half the candidates on most of them. */
-double largestHomographyShare(const std::vector<Point2d>& candidates1,
-                              const std::vector<Point2d>& candidates2,
-                              const std::vector<uchar>& heldByF, double transferThreshold)
+/* Cheap evidence that no homography explains the candidates: whether the homography of one of
+kScreenSamples random four-point samples of each pool (below) holds within `transferThreshold`
+at least half (of at most kScreenedPoints candidates, evenly spaced) of the points it or F
+(`heldByF`) holds, as the comparison counts them; the first such sample ends the screen. H wins the
+comparison only when it holds most of those (compareWithHomography; on KITTI-01 16-21 a wrong F lost
+to an H holding about two thirds of the candidates), and from a share of 0.6 on, kScreenSamples
+samples find one of its all-inlier samples with probability 0.999; a minimal sample's H holds fewer
+than the fitted one, so the screen only says "no" below half. Half the cost of the test on real
+pairs, where no homography holds half the candidates on most of them. */
+bool someHomographyHoldsHalf(const std::vector<Point2d>& candidates1,
+                             const std::vector<Point2d>& candidates2,
+                             const std::vector<uchar>& heldByF, double transferThreshold)
 {
     constexpr size_t kScreenedPoints = 500;
     constexpr int kScreenSamples = 50;
@@ -154,7 +154,6 @@ double largestHomographyShare(const std::vector<Point2d>& candidates1,
         if (byF[i])
             heldByFOnly.push_back(static_cast<int>(i));
     int sample[4];
-    double best = 0;
     std::vector<int> drawn(4);
     for (const std::vector<int>* pool : {&everyCandidate, &heldByFOnly}) {
         if (pool->size() < 4 || (pool == &heldByFOnly && pool->size() == everyCandidate.size()))
@@ -167,19 +166,23 @@ double largestHomographyShare(const std::vector<Point2d>& candidates1,
             Eigen::Matrix3d H;
             if (!homographyOfFour(points1, points2, sample, H))
                 continue;
+            // Counting stops once this sample cannot reach half: even if H held every point left,
+            // (byH + left) / (either + left) would stay below it.
             int byH = 0, either = 0;
-            for (size_t i = 0; i < points1.size(); ++i) {
-                const Eigen::Vector3d x = H * Eigen::Vector3d(points1[i].x, points1[i].y, 1.0);
-                const double dx = x.x() / x.z() - points2[i].x, dy = x.y() / x.z() - points2[i].y;
+            const int count = static_cast<int>(points1.size());
+            for (int i = 0; i < count && 2 * (byH + count - i) >= either + count - i; ++i) {
+                const size_t k = static_cast<size_t>(i);
+                const Eigen::Vector3d x = H * Eigen::Vector3d(points1[k].x, points1[k].y, 1.0);
+                const double dx = x.x() / x.z() - points2[k].x, dy = x.y() / x.z() - points2[k].y;
                 const bool held = dx * dx + dy * dy <= threshold2;
                 byH += held;
-                either += held || byF[i];
+                either += held || byF[k];
             }
-            if (either > 0)
-                best = std::max(best, static_cast<double>(byH) / either);
+            if (either > 0 && 2 * byH >= either)
+                return true;
         }
     }
-    return best;
+    return false;
 }
 
 } // namespace
@@ -222,7 +225,7 @@ HomographyComparison compareWithHomography(const TwoViewData& data, const Eigen:
     // samples, whose planar path then returns the right motion; 50 found one of 112, which did
     // not win.) Where no homography of a minimal sample holds half the candidates, none wins.
     const double transferThreshold = data.sigma * std::sqrt(2.0 * chiSquareQuantile(0.95, 2));
-    if (largestHomographyShare(candidates1, candidates2, heldByF, transferThreshold) < 0.5)
+    if (!someHomographyHoldsHalf(candidates1, candidates2, heldByF, transferThreshold))
         return result;
     // OpenCV's RANSAC here draws from a fixed seed, so the result is reproducible. A large set
     // is searched on an evenly spaced subset (kMaxIteratedPoints): twenty thousand points decide
