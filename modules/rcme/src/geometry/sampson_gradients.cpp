@@ -22,9 +22,28 @@ struct BlockTerms
     double r[kSampsonBlock], norm[kSampsonBlock], scale[kSampsonBlock];
 };
 
+// F x1 (rows 0 and 1), F^T x2 (rows 0 and 1), the residual r = x2^T F x1 and |J|^2 of one point.
 // The sums in the order of sampsonDistanceAndGradient's Eigen products (the third row of a 3x3
-// matrix times a vector is a0 + (a1 + a2); the other rows and the dot products left to right),
-// so that both give the same bits; p.z() = 1 multiplies exactly.
+// matrix times a vector is a0 + (a1 + a2); the other rows and the dot products left to right), so
+// that both give the same bits; p.z() = 1 multiplies exactly. Inlined into each clone.
+struct PointTerms
+{
+    double f0, f1, t0, t1, r, jj;
+};
+
+RCME_ALWAYS_INLINE PointTerms pointTerms(const double* f, double a, double b, double c, double e)
+{
+    PointTerms p;
+    p.f0 = f[0] * a + f[1] * b + f[2];
+    p.f1 = f[3] * a + f[4] * b + f[5];
+    const double f2 = f[6] * a + (f[7] * b + f[8]);
+    p.t0 = f[0] * c + f[3] * e + f[6];
+    p.t1 = f[1] * c + f[4] * e + f[7];
+    p.r = c * p.f0 + e * p.f1 + f2;
+    p.jj = p.f0 * p.f0 + p.f1 * p.f1 + p.t0 * p.t0 + p.t1 * p.t1;
+    return p;
+}
+
 RCME_VECTOR_CLONES RCME_SPECULATIVE_MATH void
 distancesOfBlock(const double* __restrict f, const double* __restrict x1,
                  const double* __restrict y1, const double* __restrict x2,
@@ -32,24 +51,17 @@ distancesOfBlock(const double* __restrict f, const double* __restrict x1,
                  double* __restrict distance, uchar* __restrict valid)
 {
     for (int i = 0; i < count; ++i) {
-        const double a = x1[i], b = y1[i], c = x2[i], e = y2[i];
-        const double f0 = f[0] * a + f[1] * b + f[2];
-        const double f1 = f[3] * a + f[4] * b + f[5];
-        const double f2 = f[6] * a + (f[7] * b + f[8]);
-        const double t0 = f[0] * c + f[3] * e + f[6];
-        const double t1 = f[1] * c + f[4] * e + f[7];
-        const double r = c * f0 + e * f1 + f2;
-        const double jj = f0 * f0 + f1 * f1 + t0 * t0 + t1 * t1;
-        const double norm = std::sqrt(jj);
-        valid[i] = jj > 0 ? 1 : 0;
-        distance[i] = r / norm;
-        terms.f0[i] = f0;
-        terms.f1[i] = f1;
-        terms.t0[i] = t0;
-        terms.t1[i] = t1;
-        terms.r[i] = r;
+        const PointTerms p = pointTerms(f, x1[i], y1[i], x2[i], y2[i]);
+        const double norm = std::sqrt(p.jj);
+        valid[i] = p.jj > 0 ? 1 : 0;
+        distance[i] = p.r / norm;
+        terms.f0[i] = p.f0;
+        terms.f1[i] = p.f1;
+        terms.t0[i] = p.t0;
+        terms.t1[i] = p.t1;
+        terms.r[i] = p.r;
         terms.norm[i] = norm;
-        terms.scale[i] = 2 * jj * norm;
+        terms.scale[i] = 2 * p.jj * norm;
     }
 }
 
@@ -60,16 +72,11 @@ gradientsOfBlock(const double* __restrict d, const double* __restrict x1,
                  double* __restrict gradient)
 {
     for (int i = 0; i < count; ++i) {
-        const double a = x1[i], b = y1[i], c = x2[i], e = y2[i];
-        const double d0 = d[0] * a + d[1] * b + d[2];
-        const double d1 = d[3] * a + d[4] * b + d[5];
-        const double d2 = d[6] * a + (d[7] * b + d[8]);
-        const double s0 = d[0] * c + d[3] * e + d[6];
-        const double s1 = d[1] * c + d[4] * e + d[7];
-        const double dr = c * d0 + e * d1 + d2;
+        // The same products with dF in place of F: dF x1, dF^T x2 and dr (its jj is not used).
+        const PointTerms q = pointTerms(d, x1[i], y1[i], x2[i], y2[i]);
         const double djj =
-            2 * (terms.f0[i] * d0 + terms.f1[i] * d1 + terms.t0[i] * s0 + terms.t1[i] * s1);
-        gradient[i] = dr / terms.norm[i] - terms.r[i] * djj / terms.scale[i];
+            2 * (terms.f0[i] * q.f0 + terms.f1[i] * q.f1 + terms.t0[i] * q.t0 + terms.t1[i] * q.t1);
+        gradient[i] = q.r / terms.norm[i] - terms.r[i] * djj / terms.scale[i];
     }
 }
 
@@ -79,15 +86,8 @@ squaredDistancesOfBlock(const double* __restrict f, const double* __restrict x1,
                         const double* __restrict y2, int count, double* __restrict out)
 {
     for (int i = 0; i < count; ++i) {
-        const double a = x1[i], b = y1[i], c = x2[i], e = y2[i];
-        const double f0 = f[0] * a + f[1] * b + f[2];
-        const double f1 = f[3] * a + f[4] * b + f[5];
-        const double f2 = f[6] * a + (f[7] * b + f[8]);
-        const double t0 = f[0] * c + f[3] * e + f[6];
-        const double t1 = f[1] * c + f[4] * e + f[7];
-        const double r = c * f0 + e * f1 + f2;
-        const double jj = f0 * f0 + f1 * f1 + t0 * t0 + t1 * t1;
-        out[i] = jj > 0 ? r * r / jj : std::numeric_limits<double>::infinity();
+        const PointTerms p = pointTerms(f, x1[i], y1[i], x2[i], y2[i]);
+        out[i] = p.jj > 0 ? p.r * p.r / p.jj : std::numeric_limits<double>::infinity();
     }
 }
 
