@@ -10,12 +10,14 @@
 
 #include "geometry/epipolar.hpp"
 #include "geometry/residual_bands.hpp"
+#include "geometry/sampson_gradients.hpp"
 #include "solvers/essential_five_point.hpp"
 #include "solvers/real_roots.hpp"
 
 #include <Eigen/Eigenvalues>
 
 #include <algorithm>
+#include <cstring>
 
 namespace opencv_test {
 namespace {
@@ -224,6 +226,55 @@ TEST(Rcme_SampsonBand, counts_and_masks_as_the_distance_per_point)
     Eigen::Matrix3d F = skew(Eigen::Vector3d(0, 0, 1));
     const std::vector<Eigen::Vector2d> origin = {Eigen::Vector2d(0, 0)};
     EXPECT_EQ(countInSampsonBand(F, origin, origin, 1.0), 0);
+}
+
+// The fits' block kernels must give sampsonDistanceAndGradient's and sampsonDistanceSquared's
+// values to the last bit (model_fit.cpp sums them in the same order, and the estimator's results
+// may not depend on which form computed them): entries of every magnitude, a point at the epipole.
+TEST(Rcme_SampsonBlocks, equal_the_per_point_functions_bit_for_bit)
+{
+    cv::RNG rng(23);
+    constexpr int P = 7;
+    for (int trial = 0; trial < 200; ++trial) {
+        Eigen::Matrix3d F, dF[P];
+        for (int e = 0; e < 9; ++e) {
+            F(e / 3, e % 3) = rng.gaussian(1.0) * std::pow(10.0, -rng.uniform(0, 6));
+            for (Eigen::Matrix3d& D : dF)
+                D(e / 3, e % 3) = rng.gaussian(1.0) * std::pow(10.0, -rng.uniform(0, 6));
+        }
+        const int count = rng.uniform(1, kSampsonBlock + 1);
+        double x1[kSampsonBlock], y1[kSampsonBlock], x2[kSampsonBlock], y2[kSampsonBlock];
+        for (int i = 0; i < count; ++i) {
+            x1[i] = rng.uniform(-100.0, 1300.0);
+            y1[i] = rng.uniform(-100.0, 1000.0);
+            x2[i] = rng.uniform(-100.0, 1300.0);
+            y2[i] = rng.uniform(-100.0, 1000.0);
+        }
+        if (trial == 0) { // F's epipole at the origin of both images: J vanishes there
+            F = skew(Eigen::Vector3d(0, 0, 1));
+            x1[0] = y1[0] = x2[0] = y2[0] = 0.0;
+        }
+        double distance[kSampsonBlock], gradients[P * kSampsonBlock], squared[kSampsonBlock];
+        uchar valid[kSampsonBlock];
+        sampsonGradientsOfBlock(F, dF, P, x1, y1, x2, y2, count, distance, gradients, valid);
+        sampsonDistancesSquaredOfBlock(F, x1, y1, x2, y2, count, squared);
+        for (int i = 0; i < count; ++i) {
+            const Eigen::Vector2d p1(x1[i], y1[i]), p2(x2[i], y2[i]);
+            double d = 0;
+            Eigen::Matrix<double, 1, P> g;
+            const bool ok = sampsonDistanceAndGradient<P>(F, dF, p1, p2, d, g);
+            ASSERT_EQ(valid[i] != 0, ok) << "trial " << trial << " point " << i;
+            const double expectedSquared = sampsonDistanceSquared(F, p1, p2);
+            EXPECT_EQ(std::memcmp(&squared[i], &expectedSquared, sizeof(double)), 0)
+                << squared[i] << " " << expectedSquared;
+            if (!ok)
+                continue;
+            EXPECT_EQ(std::memcmp(&distance[i], &d, sizeof(double)), 0) << distance[i] << " " << d;
+            for (int k = 0; k < P; ++k)
+                EXPECT_EQ(std::memcmp(&gradients[k * kSampsonBlock + i], &g[k], sizeof(double)), 0)
+                    << "trial " << trial << " point " << i << " parameter " << k;
+        }
+    }
 }
 
 } // namespace

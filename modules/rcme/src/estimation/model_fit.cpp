@@ -12,6 +12,7 @@
 #include "estimation/model_fit.hpp"
 #include "geometry/epipolar.hpp"
 #include "geometry/motion_parameterization.hpp"
+#include "geometry/sampson_gradients.hpp"
 #include "geometry/statistics.hpp"
 
 #include <numeric>
@@ -95,18 +96,45 @@ struct FundamentalProblem
     }
 };
 
+// The coordinates of inliers[start, start + count) as four arrays, for the block kernels.
+struct CoordinateBlock
+{
+    double x1[kSampsonBlock], y1[kSampsonBlock], x2[kSampsonBlock], y2[kSampsonBlock];
+
+    int gather(const TwoViewData& data, const std::vector<int>& inliers, size_t start)
+    {
+        const int count = static_cast<int>(std::min<size_t>(kSampsonBlock, inliers.size() - start));
+        for (int j = 0; j < count; ++j) {
+            const auto i = static_cast<size_t>(inliers[start + static_cast<size_t>(j)]);
+            x1[j] = data.points1[i].x();
+            y1[j] = data.points1[i].y();
+            x2[j] = data.points2[i].x();
+            y2[j] = data.points2[i].y();
+        }
+        return count;
+    }
+};
+
+// The sum of the squared Sampson distances, in the inliers' order.
 double sampsonCost(const TwoViewData& data, const std::vector<int>& inliers,
                    const Eigen::Matrix3d& F)
 {
+    CoordinateBlock block;
+    double squared[kSampsonBlock];
     double cost = 0;
-    for (const int index : inliers) {
-        const auto i = static_cast<size_t>(index);
-        cost += sampsonDistanceSquared(F, data.points1[i], data.points2[i]);
+    for (size_t start = 0; start < inliers.size(); start += kSampsonBlock) {
+        const int count = block.gather(data, inliers, start);
+        sampsonDistancesSquaredOfBlock(F, block.x1, block.y1, block.x2, block.y2, count, squared);
+        for (int j = 0; j < count; ++j)
+            cost += squared[j];
     }
     return cost;
 }
 
-// Gauss-Newton system J^T J, J^T r of the Sampson distances at the problem's current state.
+// Gauss-Newton system J^T J, J^T r of the Sampson distances at the problem's current state. The
+// gradients come a block of points at a time (sampsonGradientsOfBlock, vectorized); the sums run
+// over the points in order, each entry adding g_a g_b as a full outer product would, and J^T J
+// is symmetric: the same bits as sampsonDistanceAndGradient's per point, for half the products.
 template <class Problem>
 void normalEquations(const TwoViewData& data, const std::vector<int>& inliers,
                      const Problem& problem,
@@ -114,19 +142,35 @@ void normalEquations(const TwoViewData& data, const std::vector<int>& inliers,
                      Eigen::Matrix<double, Problem::kDof, 1>& Jtr)
 {
     constexpr int P = Problem::kDof;
+    constexpr int B = kSampsonBlock;
     const Eigen::Matrix3d F = problem.current();
     Eigen::Matrix3d dF[P];
     problem.derivatives(dF);
-    JtJ.setZero();
-    Jtr.setZero();
-    Eigen::Matrix<double, 1, P> g;
-    double d = 0;
-    for (const int index : inliers) {
-        const auto i = static_cast<size_t>(index);
-        if (!sampsonDistanceAndGradient<P>(F, dF, data.points1[i], data.points2[i], d, g))
-            continue;
-        JtJ.noalias() += g.transpose() * g;
-        Jtr.noalias() += g.transpose() * d;
+    CoordinateBlock block;
+    double distance[B], gradients[P * B];
+    uchar valid[B];
+    double upper[P][P] = {}, rhs[P] = {};
+    for (size_t start = 0; start < inliers.size(); start += B) {
+        const int count = block.gather(data, inliers, start);
+        sampsonGradientsOfBlock(F, dF, P, block.x1, block.y1, block.x2, block.y2, count, distance,
+                                gradients, valid);
+        for (int j = 0; j < count; ++j) {
+            if (!valid[j])
+                continue;
+            double g[P];
+            for (int k = 0; k < P; ++k)
+                g[k] = gradients[k * B + j];
+            for (int a = 0; a < P; ++a) {
+                for (int b = a; b < P; ++b)
+                    upper[a][b] += g[a] * g[b];
+                rhs[a] += g[a] * distance[j];
+            }
+        }
+    }
+    for (int a = 0; a < P; ++a) {
+        Jtr(a) = rhs[a];
+        for (int b = a; b < P; ++b)
+            JtJ(a, b) = JtJ(b, a) = upper[a][b];
     }
 }
 

@@ -1,0 +1,131 @@
+// This file is part of the rcme module. It is subject to the license terms in the LICENSE file
+// found in the top-level directory of this distribution.
+
+// Compiled with -fno-math-errno (modules/rcme/CMakeLists.txt): otherwise std::sqrt keeps a branch
+// that sets errno for a negative argument, and a loop with a branch does not vectorize. The
+// square root's value does not change.
+
+#include "geometry/sampson_gradients.hpp"
+
+#include "geometry/vector_clones.hpp"
+
+namespace cv {
+namespace rcme {
+namespace detail {
+
+namespace {
+
+// The per-point quantities every direction's gradient needs.
+struct BlockTerms
+{
+    double f0[kSampsonBlock], f1[kSampsonBlock], t0[kSampsonBlock], t1[kSampsonBlock];
+    double r[kSampsonBlock], norm[kSampsonBlock], scale[kSampsonBlock];
+};
+
+// F x1 (rows 0 and 1), F^T x2 (rows 0 and 1), the residual r = x2^T F x1 and |J|^2 of one point.
+// The sums in the order of sampsonDistanceAndGradient's Eigen products (the third row of a 3x3
+// matrix times a vector is a0 + (a1 + a2); the other rows and the dot products left to right), so
+// that both give the same bits; p.z() = 1 multiplies exactly. Inlined into each clone.
+struct PointTerms
+{
+    double f0, f1, t0, t1, r, jj;
+};
+
+RCME_ALWAYS_INLINE PointTerms pointTerms(const double* f, double a, double b, double c, double e)
+{
+    PointTerms p;
+    p.f0 = f[0] * a + f[1] * b + f[2];
+    p.f1 = f[3] * a + f[4] * b + f[5];
+    const double f2 = f[6] * a + (f[7] * b + f[8]);
+    p.t0 = f[0] * c + f[3] * e + f[6];
+    p.t1 = f[1] * c + f[4] * e + f[7];
+    p.r = c * p.f0 + e * p.f1 + f2;
+    p.jj = p.f0 * p.f0 + p.f1 * p.f1 + p.t0 * p.t0 + p.t1 * p.t1;
+    return p;
+}
+
+RCME_VECTOR_CLONES RCME_SPECULATIVE_MATH void
+distancesOfBlock(const double* __restrict f, const double* __restrict x1,
+                 const double* __restrict y1, const double* __restrict x2,
+                 const double* __restrict y2, int count, BlockTerms& __restrict terms,
+                 double* __restrict distance, uchar* __restrict valid)
+{
+    for (int i = 0; i < count; ++i) {
+        const PointTerms p = pointTerms(f, x1[i], y1[i], x2[i], y2[i]);
+        const double norm = std::sqrt(p.jj);
+        valid[i] = p.jj > 0 ? 1 : 0;
+        distance[i] = p.r / norm;
+        terms.f0[i] = p.f0;
+        terms.f1[i] = p.f1;
+        terms.t0[i] = p.t0;
+        terms.t1[i] = p.t1;
+        terms.r[i] = p.r;
+        terms.norm[i] = norm;
+        terms.scale[i] = 2 * p.jj * norm;
+    }
+}
+
+RCME_VECTOR_CLONES RCME_SPECULATIVE_MATH void
+gradientsOfBlock(const double* __restrict d, const double* __restrict x1,
+                 const double* __restrict y1, const double* __restrict x2,
+                 const double* __restrict y2, int count, const BlockTerms& __restrict terms,
+                 double* __restrict gradient)
+{
+    for (int i = 0; i < count; ++i) {
+        // The same products with dF in place of F: dF x1, dF^T x2 and dr (its jj is not used).
+        const PointTerms q = pointTerms(d, x1[i], y1[i], x2[i], y2[i]);
+        const double djj =
+            2 * (terms.f0[i] * q.f0 + terms.f1[i] * q.f1 + terms.t0[i] * q.t0 + terms.t1[i] * q.t1);
+        gradient[i] = q.r / terms.norm[i] - terms.r[i] * djj / terms.scale[i];
+    }
+}
+
+RCME_VECTOR_CLONES RCME_SPECULATIVE_MATH void
+squaredDistancesOfBlock(const double* __restrict f, const double* __restrict x1,
+                        const double* __restrict y1, const double* __restrict x2,
+                        const double* __restrict y2, int count, double* __restrict out)
+{
+    for (int i = 0; i < count; ++i) {
+        const PointTerms p = pointTerms(f, x1[i], y1[i], x2[i], y2[i]);
+        out[i] = p.jj > 0 ? p.r * p.r / p.jj : std::numeric_limits<double>::infinity();
+    }
+}
+
+void rowMajor(const Eigen::Matrix3d& M, double* out)
+{
+    for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c)
+            out[3 * r + c] = M(r, c);
+}
+
+} // namespace
+
+void sampsonGradientsOfBlock(const Eigen::Matrix3d& F, const Eigen::Matrix3d* directions,
+                             int parameters, const double* x1, const double* y1, const double* x2,
+                             const double* y2, int count, double* distance, double* gradients,
+                             uchar* valid)
+{
+    CV_DbgAssert(count <= kSampsonBlock && parameters <= 7);
+    BlockTerms terms;
+    double f[9];
+    rowMajor(F, f);
+    distancesOfBlock(f, x1, y1, x2, y2, count, terms, distance, valid);
+    for (int k = 0; k < parameters; ++k) {
+        rowMajor(directions[k], f);
+        gradientsOfBlock(f, x1, y1, x2, y2, count, terms, gradients + k * kSampsonBlock);
+    }
+}
+
+void sampsonDistancesSquaredOfBlock(const Eigen::Matrix3d& F, const double* x1, const double* y1,
+                                    const double* x2, const double* y2, int count,
+                                    double* distanceSquared)
+{
+    CV_DbgAssert(count <= kSampsonBlock);
+    double f[9];
+    rowMajor(F, f);
+    squaredDistancesOfBlock(f, x1, y1, x2, y2, count, distanceSquared);
+}
+
+} // namespace detail
+} // namespace rcme
+} // namespace cv

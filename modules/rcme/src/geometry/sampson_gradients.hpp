@@ -1,0 +1,36 @@
+// This file is part of the rcme module. It is subject to the license terms in the LICENSE file
+// found in the top-level directory of this distribution.
+
+#ifndef OPENCV_RCME_GEOMETRY_SAMPSON_GRADIENTS_HPP
+#define OPENCV_RCME_GEOMETRY_SAMPSON_GRADIENTS_HPP
+
+#include "geometry/core.hpp"
+
+namespace cv {
+namespace rcme {
+namespace detail {
+
+/** The Sampson distances and their gradients of a block of at most kSampsonBlock correspondences
+(coordinates one array each), with the arithmetic of sampsonDistanceAndGradient point by point:
+the same values to the last bit, four points at a time on AVX2. The inner loop of every least-
+squares fit (local optimisation, refinement, the final fit). `directions` holds the derivatives
+dF[k] of F along the model's parameters, k < parameters <= 7. On return distance[i] and
+gradients[k * kSampsonBlock + i] hold point i's d and dd/dp_k, and valid[i] is 0 where J
+vanishes (a point at an epipole: no distance, as sampsonDistanceAndGradient returns false). */
+constexpr int kSampsonBlock = 64;
+void sampsonGradientsOfBlock(const Eigen::Matrix3d& F, const Eigen::Matrix3d* directions,
+                             int parameters, const double* x1, const double* y1, const double* x2,
+                             const double* y2, int count, double* distance, double* gradients,
+                             uchar* valid);
+
+/** Squared Sampson distances of a block of at most kSampsonBlock correspondences, with the
+arithmetic of sampsonDistanceSquared (the same bits; infinite where J vanishes). */
+void sampsonDistancesSquaredOfBlock(const Eigen::Matrix3d& F, const double* x1, const double* y1,
+                                    const double* x2, const double* y2, int count,
+                                    double* distanceSquared);
+
+} // namespace detail
+} // namespace rcme
+} // namespace cv
+
+#endif // OPENCV_RCME_GEOMETRY_SAMPSON_GRADIENTS_HPP
