@@ -73,7 +73,8 @@ MotionSupport refitOnOwnPoints(const TwoViewData& data, Model& motion, std::vect
 std::vector<Model> refittedRivalMotions(const TwoViewData& data,
                                         const std::vector<RivalMotions::Rival>& rivals,
                                         const Model& selected, int selectedInliers,
-                                        double maxRawCost)
+                                        const std::optional<RawCostGate>& gate,
+                                        std::vector<int>* skipped)
 {
     const TwoViewData subset = data.size() > static_cast<int>(kMaxIteratedPoints)
                                    ? evenlySpacedSubset(data, kMaxIteratedPoints)
@@ -82,11 +83,16 @@ std::vector<Model> refittedRivalMotions(const TwoViewData& data,
     constexpr double kSupportShare = 0.5; // as RivalMotions' gate
     std::vector<Model> motions;
     std::vector<uchar> within, inFront;
-    for (const RivalMotions::Rival& rival : rivals) {
+    for (size_t r = 0; r < rivals.size(); ++r) {
+        const RivalMotions::Rival& rival = rivals[r];
         if (rival.score.inlierCount < kSupportShare * selectedInliers ||
-            !areDistinctMotions(rival.model, selected) ||
-            (std::isfinite(maxRawCost) && truncatedCost(data, rival.model.F) > maxRawCost))
+            !areDistinctMotions(rival.model, selected))
             continue;
+        if (gate && truncatedCost(data, rival.model.F, gate->capSquared) > gate->maxCost) {
+            if (skipped)
+                skipped->push_back(static_cast<int>(r));
+            continue;
+        }
         Model refitted = rival.model;
         if (refitOnOwnPoints(fitData, refitted, within, inFront).support <= 0)
             continue;

@@ -12,6 +12,7 @@
 #include "framework/rival_motions.hpp"
 
 #include <limits>
+#include <optional>
 #include <vector>
 
 namespace cv {
@@ -44,18 +45,27 @@ of a family). */
 MotionSupport refitOnOwnPoints(const TwoViewData& data, Model& motion, std::vector<uchar>& within,
                                std::vector<uchar>& inFront);
 
+//! Which rivals are worth refitting: those whose truncated cost as the loop left them, each
+//! point's cost at most `capSquared` (pixels^2), is at most `maxCost`.
+struct RawCostGate
+{
+    double capSquared;
+    double maxCost;
+};
+
 /** The loop's rival motions (SearchResult::rivals) that are other answers than `selected`: those
 with at least half its support (`selectedInliers`; RivalMotions' own gate) and distinct from it,
 each refitted on the points it explains itself and its decomposition chosen again by cheirality
 on all the points of its band, as the selected model's was; a rival that is the selected motion
 again once refitted (forward motion, far points: a sample's few points chose -t) is left out.
-Refit and decomposition on an evenly spaced subset of a large problem (kMaxIteratedPoints). A
-rival whose truncated cost as the loop left it exceeds `maxRawCost` is not refitted (its refit is
-the expensive part; rival_motion_decision.cpp says which rivals cannot come close). */
-std::vector<Model>
-refittedRivalMotions(const TwoViewData& data, const std::vector<RivalMotions::Rival>& rivals,
-                     const Model& selected, int selectedInliers,
-                     double maxRawCost = std::numeric_limits<double>::infinity());
+Refit and decomposition on an evenly spaced subset of a large problem (kMaxIteratedPoints). With
+a `gate`, a rival it turns down is not refitted (its refit is the expensive part; the stages say
+which rivals cannot come close) and its index in `rivals` is appended to `skipped` when given. */
+std::vector<Model> refittedRivalMotions(const TwoViewData& data,
+                                        const std::vector<RivalMotions::Rival>& rivals,
+                                        const Model& selected, int selectedInliers,
+                                        const std::optional<RawCostGate>& gate = std::nullopt,
+                                        std::vector<int>* skipped = nullptr);
 
 } // namespace detail
 } // namespace rcme

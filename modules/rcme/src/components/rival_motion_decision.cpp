@@ -57,8 +57,10 @@ public:
         const double selectedCost = truncatedCost(data, estimate.model.F);
         const double mostRawCost =
             selectedCost + data.sigma * data.sigma * (kMaxRawCostPerPoint * data.size() + margin_);
-        for (Model& rival : refittedRivalMotions(data, context.search.rivals, estimate.model,
-                                                 estimate.score.inlierCount, mostRawCost))
+        std::vector<int> unweighed;
+        for (Model& rival : refittedRivalMotions(
+                 data, context.search.rivals, estimate.model, estimate.score.inlierCount,
+                 RawCostGate{data.threshold * data.threshold, mostRawCost}, &unweighed))
             motions.push_back(std::move(rival));
         std::vector<double> costs{selectedCost};
         for (size_t m = 1; m < motions.size(); ++m)
@@ -89,6 +91,7 @@ public:
         const double rivalCostGap = std::max(0.0, gap);
         outcome.rivalCostGap = rivalCostGap;
         outcome.weighedMotions = std::move(motions);
+        outcome.unweighedRivals = std::move(unweighed);
         if (rivalCostGap < margin_)
             outcome.verdict = Verdict{
                 STATUS_UNDETERMINED_MOTION,

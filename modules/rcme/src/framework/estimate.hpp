@@ -65,6 +65,8 @@ struct StageOutcome
     std::optional<Rotation> rotation;
     //! The motions the rival decision weighed (Estimate::weighedMotions).
     std::optional<std::vector<Model>> weighedMotions;
+    //! The rivals it left unrefitted by their cost (Estimate::unweighedRivals).
+    std::optional<std::vector<int>> unweighedRivals;
 
     //! The outcome that replaces the estimate with `fit`.
     static StageOutcome revised(Fit fit)
@@ -107,6 +109,11 @@ struct Estimate
     loop's rivals, refittedRivalMotions, and the estimate it was given), so that a later stage
     weighs them again without refitting; empty when it did not run. */
     std::vector<Model> weighedMotions;
+    /** The loop's rivals (indices in SearchResult::rivals) that the rival motion decision did not
+    refit because their cost at the stated threshold, as the loop left them, was too high for the
+    decision (refittedRivalMotions' gate); a later stage that weighs the rivals at another cap
+    decides about those itself. */
+    std::vector<int> unweighedRivals;
 
     Fit fit() const { return Fit{model, score, mask}; }
 };

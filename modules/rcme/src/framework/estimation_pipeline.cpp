@@ -31,6 +31,8 @@ void apply(StageOutcome& outcome, Estimate& estimate)
         estimate.rotation = std::move(*outcome.rotation);
     if (outcome.weighedMotions)
         estimate.weighedMotions = std::move(*outcome.weighedMotions);
+    if (outcome.unweighedRivals)
+        estimate.unweighedRivals = std::move(*outcome.unweighedRivals);
     if (!outcome.verdict)
         return;
     Verdict& verdict = *outcome.verdict;
