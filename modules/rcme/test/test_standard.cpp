@@ -409,9 +409,9 @@ TEST(Rcme_Standard, large_inputs_are_refined_on_every_inlier)
 }
 
 // On a large set the final fit settles its band on the evenly spaced subset of the iterations
-// and then fits every point once (components/gold_standard_refiner.cpp). The band's rounds move
-// the model only part of the way each; four rounds on every point left this scene's translation
-// 6.8 deg off with a reported standard deviation of 0.13 deg (53 of them), a success status.
+// and then takes three rounds on every point (components/gold_standard_refiner.cpp). The rounds
+// move the model only part of the way each; four rounds on every point alone left this scene's
+// translation 6.8 deg off with a reported standard deviation of 0.13 deg (53 of them), a success.
 TEST(Rcme_Standard, a_large_final_fit_reaches_the_accuracy_it_reports)
 {
     if (kSanitizedBuild) {

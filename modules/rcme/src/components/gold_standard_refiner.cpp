@@ -38,10 +38,10 @@ public:
     // rounds on every point stopped short by many times the reported deviation
     // (doc/performance.md, "Large inputs"). So a large set settles its band on the evenly spaced
     // subset of the fits' iterations first (kMaxIteratedPoints), where a round is cheap, and then
-    // takes two rounds on every point (one alone keeps the subset's noise).
+    // takes three rounds on every point (each halves what is left of the subset's noise).
     void finalize(const TwoViewData& data, std::vector<uchar>& mask, Model& model) override
     {
-        constexpr int kMaxRounds = 4, kMaxSubsetRounds = 12, kRoundsAfterSubset = 2;
+        constexpr int kMaxRounds = 4, kMaxSubsetRounds = 12, kRoundsAfterSubset = 3;
         selection_ = mask;
         int rounds = kMaxRounds;
         const size_t stride = subsetStride(data.points1.size());

@@ -120,9 +120,10 @@ public:
                                           Scorer& scorer, Fit& selected) const override
     {
         if (!selected.model.motion) {
-            // The (refined) F becomes a motion: the closest essential matrix, decomposed with
-            // cheirality, then refined in motion space. Refining F first matters: the F of a
-            // noisy minimal sample is far from any essential matrix.
+            // The hypothesis becomes a motion: its essential matrix (Model::E, which the refinement
+            // as F leaves as it was) decomposed with cheirality on the inliers of the refined F,
+            // then refined in motion space. The inliers F gathers decide the decomposition and
+            // where the motion's refinement starts (doc/performance.md, third pass).
             if (!recoverMotion(data, selected.inliers, selected.model))
                 return Verdict{STATUS_DEGENERATE_CONFIGURATION, kNoCheirality, selected.model};
             refinement.refineNewForm(data, selected);

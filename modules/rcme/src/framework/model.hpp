@@ -37,7 +37,8 @@ struct Model
 {
     Eigen::Matrix3d F = Eigen::Matrix3d::Zero(); //!< pixel fundamental matrix, ||F|| = 1
     //! Set when the hypothesis is an essential matrix (calibrated data): F = K^-T E K^-1 up to
-    //! scale. Otherwise zero, and the motion comes from F once a model is selected.
+    //! scale until the model is refined as F, which leaves E as the solver gave it (the motion
+    //! is decomposed from it). Otherwise zero (a motion then comes from the E closest to F).
     Eigen::Matrix3d E = Eigen::Matrix3d::Zero();
     //! With K, once the decomposition of E is decided: the model is this motion (E, F follow from
     //! it), refined as a motion; without it the model is F, refined as F.

@@ -39,9 +39,10 @@ public:
                         bool redecide) const = 0;
 
     /** The selected model, refined as F (`selected`: model, score, inliers), becomes the
-    estimate of the space, decided on all its inliers: for a motion, the essential matrix closest
-    to F decomposed by cheirality and refined in motion space (refinement). The verdict when it
-    cannot decide the model (the status says why); `selected` is then the model it turns down. */
+    estimate of the space, decided on all its inliers: for a motion, the hypothesis' essential
+    matrix decomposed by cheirality on the refined F's inliers and refined in motion space
+    (refinement). The verdict when it cannot decide the model (the status says why); `selected`
+    is then the model it turns down. */
     virtual std::optional<Verdict> settleSelected(const TwoViewData& data,
                                                   const Refinement& refinement, Scorer& scorer,
                                                   Fit& selected) const = 0;
