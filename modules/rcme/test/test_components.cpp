@@ -11,6 +11,7 @@
 
 #include "framework/component_factories.hpp"
 #include "framework/model_space.hpp"
+#include "framework/rival_motions.hpp"
 #include "geometry/epipolar.hpp"
 #include "geometry/motion_parameterization.hpp"
 #include "geometry/statistics.hpp"
@@ -18,6 +19,7 @@
 
 #include <opencv2/core/eigen.hpp>
 
+#include <algorithm>
 #include <limits>
 
 namespace opencv_test {
@@ -271,6 +273,47 @@ TEST(Rcme_Cheirality, picks_the_true_decomposition)
             EXPECT_LT((t - tgt).norm(), 1e-9);
         }
     }
+}
+
+// Once every place is taken, a hypothesis enters the rivals only by beating the least supported
+// one: the loop's bail-out (inliersThatMatter) may stop counting below that, and an offer at or
+// below it is dropped before its motion is decomposed.
+TEST(Rcme_RivalMotions, a_full_memory_considers_only_counts_above_its_least)
+{
+    const TwoViewData data = sceneData(noiseFreeScene(0), true);
+    const auto offer = [&](RivalMotions& rivals, double angleDeg, int count) {
+        Model model;
+        Motion motion;
+        motion.R = Eigen::AngleAxisd(angleDeg * CV_PI / 180.0, Eigen::Vector3d::UnitY())
+                       .toRotationMatrix();
+        motion.t = Eigen::Vector3d(1, 0, 0);
+        model.motion = motion;
+        Score score;
+        score.inlierCount = count;
+        score.value = -count;
+        score.isCandidate = true;
+        rivals.offer(data, {0, 1, 2, 3, 4}, model, score);
+    };
+    const auto counts = [](const RivalMotions& rivals) {
+        std::vector<int> c;
+        for (const RivalMotions::Rival& rival : rivals.rivals())
+            c.push_back(rival.score.inlierCount);
+        std::sort(c.begin(), c.end());
+        return c;
+    };
+    RivalMotions rivals(2);
+    offer(rivals, 0.0, 100);
+    EXPECT_EQ(rivals.leastSupportConsidered(), 50); // half the best while a place is free
+    offer(rivals, 20.0, 90);
+    EXPECT_EQ(rivals.leastSupportConsidered(), 91);
+    offer(rivals, 40.0, 90); // a third motion no better than the least kept
+    EXPECT_EQ(counts(rivals), std::vector<int>({90, 100}));
+    offer(rivals, 40.0, 95); // better: it takes the least one's place
+    EXPECT_EQ(counts(rivals), std::vector<int>({95, 100}));
+    EXPECT_EQ(rivals.leastSupportConsidered(), 96);
+    offer(rivals, 0.5, 120); // the same motion as the best, better: it replaces it
+    EXPECT_EQ(counts(rivals), std::vector<int>({95, 120}));
+    EXPECT_EQ(rivals.leastSupportConsidered(), 96);
 }
 
 TEST(Rcme_Statistics, binomial_tail_bound_small_and_large_samples)

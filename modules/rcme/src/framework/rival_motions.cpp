@@ -22,7 +22,25 @@ RivalMotions::RivalMotions(int capacity) : capacity_(static_cast<size_t>(std::ma
 
 int RivalMotions::leastSupportConsidered() const
 {
-    return static_cast<int>(std::ceil(kSupportShare * mostInliers_));
+    const int share = static_cast<int>(std::ceil(kSupportShare * mostInliers_));
+    if (rivals_.size() < capacity_)
+        return share;
+    // Full: a hypothesis enters only by a better score than a rival's, and for a scorer ranked by
+    // its count alone (the only kind that uses this bound, Scorer::evaluateUpTo) that is a count
+    // above the least one kept.
+    int least = rivals_.front().score.inlierCount;
+    for (const Rival& rival : rivals_)
+        least = std::min(least, rival.score.inlierCount);
+    return std::max(share, least + 1);
+}
+
+size_t RivalMotions::worstIndex() const
+{
+    size_t worst = 0;
+    for (size_t k = 1; k < rivals_.size(); ++k)
+        if (rivals_[worst].score.isBetterThan(rivals_[k].score))
+            worst = k;
+    return worst;
 }
 
 void RivalMotions::offer(const TwoViewData& data, const std::vector<int>& sample,
@@ -31,6 +49,10 @@ void RivalMotions::offer(const TwoViewData& data, const std::vector<int>& sample
     if (score.inlierCount < kSupportShare * mostInliers_)
         return;
     mostInliers_ = std::max(mostInliers_, score.inlierCount);
+    // Full, and no better than the worst rival: it can replace none, whatever its motion (the
+    // decomposition below is most of the cost of an offer).
+    if (rivals_.size() == capacity_ && !score.isBetterThan(rivals_[worstIndex()].score))
+        return;
     Model motion = model;
     if (!motion.motion &&
         !recoverMotionFromSample(data, sample, motion, samplePoints1_, samplePoints2_))
@@ -46,12 +68,8 @@ void RivalMotions::offer(const TwoViewData& data, const std::vector<int>& sample
         rivals_.push_back({motion, score});
         return;
     }
-    Rival* worst = &rivals_.front();
-    for (Rival& rival : rivals_)
-        if (worst->score.isBetterThan(rival.score))
-            worst = &rival;
-    if (score.isBetterThan(worst->score))
-        *worst = {motion, score};
+    // Better than the worst one (checked above): it takes its place.
+    rivals_[worstIndex()] = {motion, score};
 }
 
 } // namespace detail

@@ -33,12 +33,17 @@ public:
     void offer(const TwoViewData& data, const std::vector<int>& sample, const Model& model,
                const Score& score);
 
-    //! The least inlier count offer() still considers (half the best offered so far).
+    /** The least inlier count at which offer() can change the rivals: half the best offered so
+    far, and once all `capacity` places are taken, one more than the least count kept (for
+    scorers ranked by their count alone). */
     int leastSupportConsidered() const;
     //! One per distinct motion seen, in no particular order.
     const std::vector<Rival>& rivals() const { return rivals_; }
 
 private:
+    //! The place of the rival of the worst score (the first of equals), which a better one takes.
+    size_t worstIndex() const;
+
     size_t capacity_;
     int mostInliers_ = 0;
     std::vector<Rival> rivals_;
