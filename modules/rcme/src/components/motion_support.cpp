@@ -70,16 +70,38 @@ MotionSupport refitOnOwnPoints(const TwoViewData& data, Model& motion, std::vect
     return motionSupport(data, motion, within, inFront);
 }
 
+namespace {
+
+// `motion` refitted on its own points of `data` and its decomposition chosen again; none when it
+// is no distinct motion from `selected` then.
+std::optional<Model> refittedRival(const TwoViewData& data, const Model& motion,
+                                   const Model& selected, std::vector<uchar>& within,
+                                   std::vector<uchar>& inFront)
+{
+    Model refitted = motion;
+    if (refitOnOwnPoints(data, refitted, within, inFront).support <= 0)
+        return std::nullopt;
+    if (recoverMotion(data, within, refitted) && areDistinctMotions(refitted, selected))
+        return refitted;
+    return std::nullopt;
+}
+
+} // namespace
+
 std::vector<Model> refittedRivalMotions(const TwoViewData& data,
                                         const std::vector<RivalMotions::Rival>& rivals,
                                         const Model& selected, int selectedInliers,
                                         const std::optional<RawCostGate>& gate,
+                                        const std::optional<RefitScreen>& screen,
                                         std::vector<int>* skipped)
 {
     const TwoViewData subset = data.size() > static_cast<int>(kMaxIteratedPoints)
                                    ? evenlySpacedSubset(data, kMaxIteratedPoints)
                                    : TwoViewData();
     const TwoViewData& fitData = subset.points1.empty() ? data : subset;
+    const bool screens = screen && data.size() > static_cast<int>(screen->points);
+    const TwoViewData screenData =
+        screens ? evenlySpacedSubset(data, screen->points) : TwoViewData();
     constexpr double kSupportShare = 0.5; // as RivalMotions' gate
     std::vector<Model> motions;
     std::vector<uchar> within, inFront;
@@ -93,11 +115,18 @@ std::vector<Model> refittedRivalMotions(const TwoViewData& data,
                 skipped->push_back(static_cast<int>(r));
             continue;
         }
-        Model refitted = rival.model;
-        if (refitOnOwnPoints(fitData, refitted, within, inFront).support <= 0)
-            continue;
-        if (recoverMotion(fitData, within, refitted) && areDistinctMotions(refitted, selected))
-            motions.push_back(refitted);
+        if (screens) {
+            std::optional<Model> screened =
+                refittedRival(screenData, rival.model, selected, within, inFront);
+            if (screened &&
+                truncatedCost(data, screened->F, screen->capSquared) > screen->maxCost) {
+                motions.push_back(std::move(*screened));
+                continue;
+            }
+        }
+        if (std::optional<Model> refitted =
+                refittedRival(fitData, rival.model, selected, within, inFront))
+            motions.push_back(std::move(*refitted));
     }
     return motions;
 }

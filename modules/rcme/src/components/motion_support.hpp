@@ -53,6 +53,16 @@ struct RawCostGate
     double maxCost;
 };
 
+/** A cheaper first refit of each rival on an evenly spaced subset of `points`: a rival whose
+subset refit costs more than `maxCost` on all the points (each at most `capSquared`) is returned
+as that refit, the others are refitted on all the points. */
+struct RefitScreen
+{
+    size_t points;
+    double capSquared;
+    double maxCost;
+};
+
 /** The loop's rival motions (SearchResult::rivals) that are other answers than `selected`: those
 with at least half its support (`selectedInliers`; RivalMotions' own gate) and distinct from it,
 each refitted on the points it explains itself and its decomposition chosen again by cheirality
@@ -60,11 +70,13 @@ on all the points of its band, as the selected model's was; a rival that is the 
 again once refitted (forward motion, far points: a sample's few points chose -t) is left out.
 Refit and decomposition on an evenly spaced subset of a large problem (kMaxIteratedPoints). With
 a `gate`, a rival it turns down is not refitted (its refit is the expensive part; the stages say
-which rivals cannot come close) and its index in `rivals` is appended to `skipped` when given. */
+which rivals cannot come close) and its index in `rivals` is appended to `skipped` when given;
+with a `screen`, a rival its subset refit shows to be far is not refitted on all the points. */
 std::vector<Model> refittedRivalMotions(const TwoViewData& data,
                                         const std::vector<RivalMotions::Rival>& rivals,
                                         const Model& selected, int selectedInliers,
                                         const std::optional<RawCostGate>& gate = std::nullopt,
+                                        const std::optional<RefitScreen>& screen = std::nullopt,
                                         std::vector<int>* skipped = nullptr);
 
 } // namespace detail
