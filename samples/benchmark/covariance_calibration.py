@@ -158,17 +158,47 @@ def psd_max(A, B, margin=0.0):
     return half @ U @ np.diag(np.maximum(m - margin, 1.0)) @ U.T @ half
 
 
+# The stated sigma's weight as a prior on the noise, in residual degrees of freedom (the library's
+# kStatedNoiseDof, components/residual_covariance.cpp; picked among 0-30 on the tune sets).
+STATED_NOISE_DOF = 4.0
+# Residual degrees of freedom from which the final fit uses the estimated noise, and the reported
+# covariance is raised to the sandwich (model_fit.cpp's kMinNoiseDof).
+MIN_NOISE_DOF = 30
+
+
+def _threshold(params):
+    return params.threshold if params.threshold > 0 else 1.959963984540054 * params.sigma
+
+
+def posterior_noise_variance(stated, estimated, dof, prior_dof=STATED_NOISE_DOF):
+    """The library's posteriorNoiseVariance: the mean of sigma^2's scaled-inverse-chi-square
+    posterior with the stated sigma as a prior worth prior_dof degrees of freedom."""
+    if dof < 1 or not np.isfinite(estimated):
+        return stated * stated
+    return (prior_dof * stated * stated + dof * estimated * estimated) / (prior_dof + dof - 2)
+
+
 def _noise_and_truncation(report, params, inliers):
-    """The final fit's sigma (estimated or stated, as the library picks it) and its band's
-    truncation factor h: sigma^2 / h(c / sigma) = mean square / h^2."""
-    threshold = params.threshold if params.threshold > 0 else 1.959963984540054 * params.sigma
-    sigma = report.noiseSigma if (params.useEstimatedNoise and inliers - 5 >= 30 and
-                                  np.isfinite(report.noiseSigma)) else params.sigma
-    return sigma, truncated_normal_variance(threshold / sigma)
+    """The reported covariance's sigma (with the estimated noise: the posterior of the estimate
+    and the stated sigma, as the library computes it; else the stated one) and its band's
+    truncation factor h: sigma^2 / h(c / sigma)."""
+    sigma = params.sigma
+    if params.useEstimatedNoise:
+        sigma = math.sqrt(posterior_noise_variance(params.sigma, report.noiseSigma, inliers - 5))
+    return sigma, truncated_normal_variance(_threshold(params) / sigma)
+
+
+def _fit_noise(report, params, inliers):
+    """The final fit's own sigma (main before the posterior noise): the estimate from
+    MIN_NOISE_DOF residual degrees of freedom on, the stated sigma below."""
+    estimated = (params.useEstimatedNoise and inliers - 5 >= MIN_NOISE_DOF and
+                 np.isfinite(report.noiseSigma))
+    return report.noiseSigma if estimated else params.sigma
 
 
 REPORTED = "reported (Report::covariance)"
 MODEL_BASED = "model-based sigma^2 / h (J^T J)^-1"
+STEP = "before: the stated sigma below 35 inliers"
 
 
 def candidates(report, pair, params):
@@ -187,8 +217,16 @@ def candidates(report, pair, params):
     A_inv = np.linalg.inv(J.T @ J)
     sigma, h = _noise_and_truncation(report, params, n)
     model_based = sigma * sigma / h * A_inv
+    fitted = _fit_noise(report, params, n)
+    h_fitted = truncated_normal_variance(_threshold(params) / fitted)
     scores = J * d[:, None]
+    # the sandwich's truncation factor is the estimated noise's (the library's, where it is used)
+    h = h_fitted if np.isfinite(report.noiseSigma) and fitted == report.noiseSigma else h
     sandwich = A_inv @ (scores.T @ scores) @ A_inv * n / (n - 5) / h ** 2
+    margin = 2 * math.sqrt(2 / n)
+    step = fitted * fitted / h_fitted * A_inv
+    if params.useEstimatedNoise and n - 5 >= MIN_NOISE_DOF and np.isfinite(report.noiseSigma):
+        step = psd_max(step, sandwich, margin)
     lo, hi = p1.min(0), p1.max(0) + 1e-9
     cells = np.floor((p1 - lo) / (hi - lo) * CLUSTER_GRID).astype(int) @ [CLUSTER_GRID, 1]
     sums = np.array([scores[cells == c].sum(0) for c in np.unique(cells)])
@@ -201,7 +239,7 @@ def candidates(report, pair, params):
             "sandwich": sandwich,
             "clustered sandwich (%dx%d cells)" % (CLUSTER_GRID, CLUSTER_GRID): clustered,
             "max(model-based, sandwich), no margin": psd_max(model_based, sandwich),
-            SPATIAL: psd_max(model_based, spatial, 2 * math.sqrt(2 / n)),
+            SPATIAL: psd_max(model_based, spatial, margin), STEP: step,
             FLOOR: np.asarray(report.covariance, np.float64) +
             EPIPOLAR_FLOOR_PX ** 2 * n * A_inv}
 
@@ -388,9 +426,9 @@ def loop_rows(sequences, matcher, sigma, max_loops):
                     nees1, conditioning = loop_translation_nees(reports, covariances)
                     rows.append(dict(dataset=sequence.name, mode=mode, candidate=name,
                                      nees3=loop_nees(reports, covariances), nees1=nees1,
-                                     conditioning=conditioning, stated_fallback=any(
-                                         _noise_and_truncation(r, params, int(np.sum(r.mask)))[0]
-                                         == params.sigma for r in reports)))
+                                     conditioning=conditioning, few_inliers=any(
+                                         int(np.sum(r.mask)) - 5 < MIN_NOISE_DOF
+                                         for r in reports)))
     return rows
 
 
@@ -608,6 +646,11 @@ def synthetic_configs(scenes_per_config):
     return [(c, seed) for c in configs for seed in range(scenes_per_config)]
 
 
+# The synthetic NEES3 mean's spread is shown per block of this many seeds per configuration (the
+# suite's size before issue 36c: its 1080 scenes gave a mean of 2.62, the lowest of four blocks).
+SEED_BLOCK = 15
+
+
 def run_synthetic(scenes_per_config, stated_sigma_factor):
     rows, noise_ratio = [], []
     for config, seed in synthetic_configs(scenes_per_config):
@@ -632,7 +675,7 @@ def run_synthetic(scenes_per_config, stated_sigma_factor):
             for name, C in covariances.items():
                 n5, n3 = (np.inf, np.inf) if theta is None else nees(theta, C)
                 rows.append(dict(mode=mode, candidate=name, gross=gross, nees5=n5, nees3=n3,
-                                 scene="generic" if config["kind"] == rcme.SCENE_GENERIC
+                                 seed=seed, scene="generic" if config["kind"] == rcme.SCENE_GENERIC
                                  else "corridor",
                                  outliers="no outliers" if config["inlier_ratio"] == 1.0
                                  else "30 % outliers"))
@@ -644,7 +687,7 @@ def run_synthetic(scenes_per_config, stated_sigma_factor):
                               GROSS_ROTATION_DEG, GROSS_TRANSLATION_DEG)]
     groups = []
     for estimated, mode in NOISE_MODES:
-        for name in ((REPORTED, MODEL_BASED, "sandwich", SPATIAL, FLOOR) if estimated else
+        for name in ((REPORTED, STEP, MODEL_BASED, "sandwich", SPATIAL, FLOOR) if estimated else
                      (REPORTED,)):
             for scene, outliers in (("all", "all"), ("generic", "no outliers"),
                                     ("generic", "30 % outliers"), ("corridor", "no outliers"),
@@ -657,6 +700,15 @@ def run_synthetic(scenes_per_config, stated_sigma_factor):
                            nees_table(rows, groups)))
     r = np.asarray(noise_ratio)
     reported = [x for x in rows if x["candidate"] == REPORTED and x["mode"] == NOISE_MODES[0][1]]
+    blocks = [[x["nees3"] for x in reported if not x["gross"] and b <= x["seed"] < b + SEED_BLOCK]
+              for b in range(0, scenes_per_config, SEED_BLOCK)]
+    if len(blocks) > 1:
+        lines.append("\nThe NEES3 mean is heavy-tailed: the default's, per block of %d seeds "
+                     "(%d scenes each), mean / median / below 7.815: %s.\n" % (
+                         SEED_BLOCK, SEED_BLOCK * len(synthetic_configs(1)),
+                         "; ".join("%.2f / %.2f / %.0f %%" % (np.mean(v), np.median(v),
+                                                               100 * np.mean(np.less(v, 7.815)))
+                                   for v in blocks if v)))
     if len(r):
         lines.append("\nnoiseSigma / true sigma over %d successful runs: mean %.3f, median %.3f, "
                      "5-95 %% range %.3f-%.3f; gross runs: %d of %d.\n" % (
@@ -745,25 +797,27 @@ def real_report(args, out_dir):
     estimated_loops = [r for r in loops if r["mode"] == NOISE_MODES[0][1]]
     smaller = [r for r in loop_rows(sequences, _SubsampledMatcher(matcher), args.sigma,
                                     args.max_loops)
-               if r["mode"] == NOISE_MODES[0][1] and r["candidate"] in (REPORTED, FLOOR)]
+               if r["mode"] == NOISE_MODES[0][1] and r["candidate"] in (REPORTED, STEP, FLOOR)]
     share_table = [[d, split_of(d), share, name, which, str(len(subset))] + loop_stats(subset)
                    for d in sorted({r["dataset"] for r in default_loops},
                                    key=lambda d: (split_of(d), d))
-                   for name in (REPORTED, FLOOR)
+                   for name in (REPORTED, STEP, FLOOR)
                    for share, rows_of in (("1/4", estimated_loops), ("1/8", smaller))
                    for which, keep in (("all", lambda r: True),
-                                       ("estimated noise in all three pairs",
-                                        lambda r: not r["stated_fallback"]))
+                                       ("35 inliers or more in all three pairs",
+                                        lambda r: not r["few_inliers"]))
                    for subset in [[r for r in rows_of if r["dataset"] == d and
                                    r["candidate"] == name and keep(r)]] if subset]
     lines += ["\nThe same loops with half of each pair's matches left out first (each pair keeps "
               "about 1/8 of its matches instead of 1/4). A covariance that leaves out an error "
               "which does not shrink with the number of matches looks more over-confident the "
-              "more matches it is computed from. A pair with fewer than 35 inliers takes the "
-              "stated sigma (1 px, about 3x the estimated noise on these sequences) instead of "
-              "the estimated one: a loop with such a pair reads conservative, so the loops whose "
-              "three pairs all use the estimated noise are shown apart. The floor candidate: "
-              "%s.\n" % FLOOR,
+              "more matches it is computed from. The reported covariance's noise is the posterior "
+              "of the estimate and the stated sigma (a prior worth %g residual degrees of "
+              "freedom); before, a pair with fewer than 35 inliers took the stated sigma (1 px, "
+              "about 3x the estimated noise on these sequences) and its loops read conservative "
+              "(%s). From 35 inliers on the covariance is also raised to the sandwich, so the "
+              "loops whose three pairs all have them are shown apart. The floor candidate: "
+              "%s.\n" % (STATED_NOISE_DOF, STEP, FLOOR),
               _markdown(["sequence", "split", "share of the matches", "covariance", "loops kept",
                          "loops"] + LOOP_HEADER, share_table)]
     gt = gt_error(default, default_loops, slice(0, 3), "nees3", 3)
@@ -954,7 +1008,7 @@ def main():
     ap.add_argument("--sigma", type=float, default=1.0, help="Params.sigma on real pairs (px)")
     ap.add_argument("--synthetic", action="store_true", help="also the synthetic scenes")
     ap.add_argument("--synthetic-only", action="store_true", help="only the synthetic scenes")
-    ap.add_argument("--scenes-per-config", type=int, default=15,
+    ap.add_argument("--scenes-per-config", type=int, default=60,
                     help="synthetic scenes per configuration (48 configurations)")
     ap.add_argument("--stated-sigma-factor", type=float, default=1.0,
                     help="synthetic: Params.sigma as a multiple of the true noise")

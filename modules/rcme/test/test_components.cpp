@@ -328,6 +328,23 @@ TEST(Rcme_Statistics, binomial_tail_bound_small_and_large_samples)
     EXPECT_EQ(binomialTailBound(1000000, 0.01, 5e-5), 10390);
 }
 
+TEST(Rcme_Statistics, posterior_noise_moves_from_the_stated_sigma_to_the_estimate)
+{
+    // Stated 1 px as a prior worth 4 degrees of freedom, estimate 0.3 px.
+    EXPECT_EQ(posteriorNoiseVariance(1.0, 0.3, 0, 4.0), 1.0);
+    EXPECT_EQ(posteriorNoiseVariance(1.0, std::numeric_limits<double>::quiet_NaN(), 50, 4.0), 1.0);
+    EXPECT_NEAR(posteriorNoiseVariance(1.0, 0.3, 30, 4.0), (4.0 + 30 * 0.09) / 32.0, 1e-15);
+    // No jump anywhere: each further degree of freedom moves it by less than 1/(dof + 2) of the
+    // gap between prior and estimate, and it tends to the estimate.
+    for (int dof = 1; dof < 400; ++dof) {
+        const double before = posteriorNoiseVariance(1.0, 0.3, dof, 4.0);
+        const double after = posteriorNoiseVariance(1.0, 0.3, dof + 1, 4.0);
+        EXPECT_LT(after, before) << dof;
+        EXPECT_LT(before - after, 1.0 / (dof + 2)) << dof;
+    }
+    EXPECT_NEAR(posteriorNoiseVariance(1.0, 0.3, 1000000, 4.0), 0.09, 1e-5);
+}
+
 TEST(Rcme_Statistics, log_binomial_coefficient_and_tail)
 {
     // Values from Python's math.lgamma and exact integer sums (fractions.Fraction).

@@ -154,6 +154,15 @@ double noiseFromTruncatedResiduals(double meanSquare, double threshold)
     return std::exp(0.5 * (lo + hi));
 }
 
+double posteriorNoiseVariance(double stated, double estimated, int dof, double priorDof)
+{
+    CV_Assert(stated > 0 && priorDof > 2);
+    if (!(dof >= 1) || !std::isfinite(estimated))
+        return stated * stated;
+    const double nu = static_cast<double>(dof);
+    return (priorDof * stated * stated + nu * estimated * estimated) / (priorDof + nu - 2.0);
+}
+
 } // namespace detail
 } // namespace rcme
 } // namespace cv

@@ -40,6 +40,15 @@ when meanSquare is not below threshold^2 / 3 (residuals spread as uniformly as t
 no Gaussian explains them) or not positive. */
 double noiseFromTruncatedResiduals(double meanSquare, double threshold);
 
+/** The noise variance of a fit whose residuals estimate sigma as `estimated` with `dof` degrees of
+freedom, with the `stated` sigma as a prior worth `priorDof` degrees of freedom: the mean of
+sigma^2's scaled-inverse-chi-square posterior, (priorDof stated^2 + dof estimated^2) /
+(priorDof + dof - 2). It moves from the stated sigma towards the estimate as the residuals
+accumulate, with no jump, and the -2 widens it by what the estimate's own uncertainty adds to
+the error's spread (the error is Student-t). `stated` alone when the estimate is not finite or
+dof < 1; needs priorDof > 2. */
+double posteriorNoiseVariance(double stated, double estimated, int dof, double priorDof);
+
 } // namespace detail
 } // namespace rcme
 } // namespace cv

@@ -184,8 +184,10 @@ struct CV_EXPORTS_W_SIMPLE Params
     CV_PROP_RW int refineIterations;
     /** Noise of Report::covariance: true (default) uses Report::noiseSigma, the noise estimated
     from the final inliers' residuals, when they leave at least 30 residual degrees of freedom
-    (inliers minus the model's 5 or 7) and the stated sigma otherwise; false always uses the
-    stated sigma. The estimate does not change the inlier threshold, only the covariance. */
+    (inliers minus the model's 5 or 7) and the stated sigma otherwise; with a camera matrix the
+    reported covariance then takes the posterior noise at every count instead, the estimate shrunk
+    toward the stated sigma (see Report::covariance). false always uses the stated sigma. The
+    estimate does not change the inlier threshold, only the covariance. */
     CV_PROP_RW bool useEstimatedNoise;
     //! Significance level of RCME's tests (consistency and quality). Default 0.05.
     CV_PROP_RW double alpha;
@@ -322,10 +324,13 @@ struct CV_EXPORTS_W_SIMPLE Report
     them): sigma^2 / h(c / sigma) (J^T J)^-1,
     with sigma the noise chosen by Params::useEstimatedNoise, c the inlier threshold and h(k) =
     E[z^2 | |z| < k] (the fit sees only residuals inside the band; 1 / h = 1.32 at 1.96 sigma).
-    With the estimated noise it is then raised to the inliers' residual-based (sandwich)
-    covariance A^-1 S A^-1 n / (n - 5) / h^2, A = J^T J, S = sum d_i^2 g_i^T g_i, along the
-    directions where that exceeds it by more than its sampling noise (real matches' noise differs
-    from point to point). Its calibration, and what it can be trusted for, is measured in
+    With the estimated noise, sigma^2 is then the posterior (4 s0^2 + nu s^2) / (nu + 2): the
+    estimate s (noiseSigma, nu = inliers - 5 residual degrees of freedom) shrunk toward the stated
+    sigma s0, a prior worth 4 degrees of freedom, so that it moves from s0 to s with the number
+    of inliers without a jump; and from 35 inliers on it is raised to the inliers' residual-based
+    (sandwich) covariance A^-1 S A^-1 n / (n - 5) / h^2, A = J^T J, S = sum d_i^2 g_i^T g_i, along
+    the directions where that exceeds it by more than its sampling noise (real matches' noise
+    differs from point to point). Its calibration, and what it can be trusted for, is measured in
     doc/covariance.md. poseCovariance converts it to a 6x6 (rotation,
     translation) covariance. With #STATUS_PURE_ROTATION, 3x3: the rotation increment's alone
     (R exp([omega]x)), since t is not determined. */
