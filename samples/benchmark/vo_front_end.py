@@ -163,7 +163,7 @@ def _time_lines(rows, method_names, groups):
                           "median ratio to cv E RANSAC (same pair)"], lines)
 
 
-def write_report(rows, method_names, path, task, argv, sigma):
+def write_report(rows, method_names, path, task, argv, sigma, load):
     datasets_ = sorted({r["dataset"] for r in rows})
     moving = [r for r in rows if r["kind"] in ("i+1", "i+2", "after stale")]
     groups = []
@@ -204,8 +204,9 @@ def write_report(rows, method_names, path, task, argv, sigma):
         "without a motion scores 0.\n",
         report.auc_table(auc_groups, method_names),
         "\n## Time per pair (estimator call only, one thread)\n",
-        "The machine was shared with other jobs while this ran: absolute times are loaded; the "
-        "ratios of calls interleaved on the same pair are the fairer figure.\n",
+        "Load average at the start of the run: %.2f (1 min) on %d logical CPUs; absolute times "
+        "depend on it, the ratios of calls interleaved on the same pair less so.\n"
+        % (load, os.cpu_count() or 0),
         _time_lines(moving, method_names,
                     [(d, [r for r in moving if r["dataset"] == d]) for d in datasets_]),
         "\n## Pairs returned wrong with success\n",
@@ -255,8 +256,9 @@ def main(argv=None):
     task = []
     for label, sequence in sequences:
         task += vo_pairs(sequence, label, 8 if args.quick else None, inputs)
+    load = os.getloadavg()[0]
     rows = run(task, names, args.sigma)
-    write_report(rows, names, args.out, task, argv, args.sigma)
+    write_report(rows, names, args.out, task, argv, args.sigma, load)
     print(open(args.out).read())
     complete = all(any(r["method"] == m and r["pair"] == p.name and r["dataset"] == p.dataset
                        for r in rows) for _, p, _ in task for m in names)
