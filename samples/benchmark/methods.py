@@ -116,9 +116,11 @@ def _normalized(F):
     return F / np.linalg.norm(F)
 
 
-def _run_rcme(method):
+def _run_rcme(method, **fields):
     def run(p1, p2, K, budget):
         params = rcme_params(method, budget)
+        for name, value in fields.items():
+            setattr(params, name, value)
         start = time.perf_counter()
         report = rcme.estimateRelativeMotion(p1, p2, K if K is not None else np.zeros((0, 0)),
                                              params)
@@ -139,6 +141,12 @@ def _run_rcme(method):
             estimate.rejected_t = np.asarray(report.rejectedT).reshape(3, 1)
         return estimate
     return run
+
+
+def default_runner(**fields):
+    """A runner of the library's defaults with the given Params fields changed (a stage switched
+    off, samples/benchmark/stage_value.py), for METHODS."""
+    return _run_rcme(None, **fields)
 
 
 def _run_opencv_f(flag):

@@ -10,6 +10,8 @@
 #   samples/benchmark/with_poselib.sh --vo-front-end [vo_front_end.py arguments]
 #   samples/benchmark/with_poselib.sh --covariance [covariance_calibration.py arguments]
 #   samples/benchmark/with_poselib.sh --f-only [f_only.py arguments]   (no K for anyone)
+#   samples/benchmark/with_poselib.sh --stage-costs [stage_value.py arguments]   (what each stage
+#       of the default costs and buys: doc/benchmark/stage_value.md)
 # Environment: BUILD_DIR (default build), POSELIB_VENV (default $BUILD_DIR/poselib-venv),
 # POSELIB_VERSION (default 2.0.5, the version measured in doc/results.md).
 set -euo pipefail
@@ -27,6 +29,7 @@ case "${1:-}" in
     --vo-front-end) script=vo_front_end.py ;;
     --covariance) script=covariance_calibration.py ;;
     --f-only) script=f_only.py ;;
+    --stage-costs) script=stage_value.py ;;
     *) script=run_benchmark.py ;;
 esac
 [ "$script" = run_benchmark.py ] || shift

@@ -275,6 +275,93 @@ TEST(Rcme_Cheirality, picks_the_true_decomposition)
     }
 }
 
+// The four decompositions counted in one pass choose as countPointsInFront of each in turn (the
+// count and the first candidate of the most points), on noisy scenes with outliers and a selection.
+TEST(Rcme_Cheirality, one_pass_over_the_decompositions_counts_as_each_in_turn)
+{
+    for (int seed = 0; seed < 8; ++seed) {
+        SceneParams sp;
+        sp.kind = seed % 2 ? SCENE_CORRIDOR : SCENE_GENERIC;
+        sp.sigma = 1.0;
+        sp.inlierRatio = 0.5;
+        sp.numPoints = 400;
+        sp.seed = seed;
+        const TwoViewData data = sceneData(generateScene(sp), true);
+        std::vector<uchar> selection(data.points1.size());
+        for (size_t i = 0; i < selection.size(); ++i)
+            selection[i] = (i * 7 + static_cast<size_t>(seed)) % 3 != 0;
+        // A rough E of the scene: the first 8 points' least-squares fit, so that the four
+        // candidates keep different shares of the points.
+        Eigen::Matrix<double, 8, 9> A;
+        for (int i = 0; i < 8; ++i) {
+            const Eigen::Vector3d y1 = data.Kinv * homogeneous(data.points1[i]);
+            const Eigen::Vector3d y2 = data.Kinv * homogeneous(data.points2[i]);
+            for (int r = 0; r < 3; ++r)
+                for (int c = 0; c < 3; ++c)
+                    A(i, 3 * r + c) = y2(r) * y1(c);
+        }
+        Eigen::JacobiSVD<Eigen::Matrix<double, 8, 9>> svd(A, Eigen::ComputeFullV);
+        const Eigen::Matrix<double, 9, 1> e = svd.matrixV().col(8);
+        Eigen::Matrix3d E;
+        E << e(0), e(1), e(2), e(3), e(4), e(5), e(6), e(7), e(8);
+        const std::vector<uchar>* selections[2] = {nullptr, &selection};
+        for (const std::vector<uchar>* chosen : selections)
+            for (double distance : {50.0, std::numeric_limits<double>::infinity(), 2.0}) {
+                Eigen::Matrix3d R;
+                Eigen::Vector3d t;
+                const int count = recoverMotionFromEssential(E, data.points1, data.points2,
+                                                             data.Kinv, chosen, R, t, distance);
+                // The reference: each candidate in turn, as cv::recoverPose.
+                Eigen::JacobiSVD<Eigen::Matrix3d> d(E, Eigen::ComputeFullU | Eigen::ComputeFullV);
+                Eigen::Matrix3d U = d.matrixU(), V = d.matrixV();
+                if (U.determinant() < 0)
+                    U = -U;
+                if (V.determinant() < 0)
+                    V = -V;
+                Eigen::Matrix3d W;
+                W << 0, -1, 0, 1, 0, 0, 0, 0, 1;
+                const Eigen::Matrix3d rotations[2] = {U * W * V.transpose(),
+                                                      U * W.transpose() * V.transpose()};
+                const Eigen::Vector3d direction = U.col(2).normalized();
+                int best = -1;
+                Eigen::Matrix3d bestR;
+                Eigen::Vector3d bestT;
+                for (int candidate = 0; candidate < 4; ++candidate) {
+                    const Eigen::Vector3d tc =
+                        candidate % 2 == 0 ? direction : Eigen::Vector3d(-direction);
+                    const int c =
+                        countPointsInFront(rotations[candidate / 2], tc, data.points1, data.points2,
+                                           data.Kinv, chosen, nullptr, distance);
+                    if (c > best) {
+                        best = c;
+                        bestR = rotations[candidate / 2];
+                        bestT = tc;
+                    }
+                }
+                EXPECT_EQ(count, best) << "seed " << seed << " distance " << distance;
+                EXPECT_TRUE(R == bestR && t == bestT) << "seed " << seed;
+            }
+    }
+}
+
+// maskIndices without a branch lists the ones of a mask in order, whatever the buffer held.
+TEST(Rcme_MaskIndices, lists_the_ones_in_order)
+{
+    cv::RNG rng(37);
+    std::vector<int> indices = {5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16};
+    for (int trial = 0; trial < 30; ++trial) {
+        std::vector<uchar> mask(static_cast<size_t>(rng.uniform(0, 40)));
+        for (uchar& m : mask)
+            m = static_cast<uchar>(rng.uniform(0, 3) == 0 ? 0 : rng.uniform(1, 256));
+        maskIndices(mask, indices);
+        std::vector<int> expected;
+        for (size_t i = 0; i < mask.size(); ++i)
+            if (mask[i])
+                expected.push_back(static_cast<int>(i));
+        EXPECT_EQ(indices, expected) << "trial " << trial;
+    }
+}
+
 // Once every place is taken, a hypothesis enters the rivals only by beating the least supported
 // one: the loop's bail-out (inliersThatMatter) may stop counting below that, and an offer at or
 // below it is dropped before its motion is decomposed.

@@ -277,6 +277,124 @@ TEST(Rcme_SampsonBlocks, equal_the_per_point_functions_bit_for_bit)
     }
 }
 
+// accumulateNormalEquations sums each entry of J^T J and J^T r in the points' order: the bits of
+// the loop over the points it replaces, over several blocks and with invalid points skipped.
+TEST(Rcme_SampsonBlocks, normal_equations_sum_as_the_loop_over_the_points)
+{
+    cv::RNG rng(41);
+    for (int P : {5, 7}) {
+        std::vector<double> normal(static_cast<size_t>(P * (P + 1)), 0.0);
+        std::vector<double> upper(static_cast<size_t>(P * P), 0.0), rhs(P, 0.0);
+        for (int blockIndex = 0; blockIndex < 20; ++blockIndex) {
+            const int count = rng.uniform(1, kSampsonBlock + 1);
+            double distance[kSampsonBlock], gradients[7 * kSampsonBlock];
+            uchar valid[kSampsonBlock];
+            for (int j = 0; j < count; ++j) {
+                distance[j] = rng.gaussian(1.0) * std::pow(10.0, rng.uniform(-3, 3));
+                valid[j] = rng.uniform(0, 10) > 0;
+                for (int k = 0; k < P; ++k)
+                    gradients[k * kSampsonBlock + j] =
+                        rng.gaussian(1.0) * std::pow(10.0, rng.uniform(-6, 6));
+            }
+            accumulateNormalEquations(P, distance, gradients, valid, count, normal.data());
+            for (int j = 0; j < count; ++j) {
+                if (!valid[j])
+                    continue;
+                for (int a = 0; a < P; ++a) {
+                    const double ga = gradients[a * kSampsonBlock + j];
+                    for (int b = a; b < P; ++b)
+                        upper[a * P + b] += ga * gradients[b * kSampsonBlock + j];
+                    rhs[a] += ga * distance[j];
+                }
+            }
+        }
+        for (int a = 0; a < P; ++a) {
+            EXPECT_EQ(std::memcmp(&normal[a * (P + 1) + P], &rhs[a], sizeof(double)), 0)
+                << "P " << P << " row " << a;
+            for (int b = a; b < P; ++b)
+                EXPECT_EQ(std::memcmp(&normal[a * (P + 1) + b], &upper[a * P + b], sizeof(double)),
+                          0)
+                    << "P " << P << " entry " << a << ", " << b;
+        }
+    }
+}
+
+// markWithinSampsonDistance (the final fit's band) is the per-point test on sampsonDistanceSquared,
+// point for point, on points within a few ulps of the threshold too.
+TEST(Rcme_SampsonBlocks, the_band_marks_as_the_distance_per_point)
+{
+    cv::RNG rng(29);
+    for (int trial = 0; trial < 50; ++trial) {
+        Eigen::Matrix3d F;
+        for (int e = 0; e < 9; ++e)
+            F(e / 3, e % 3) = rng.gaussian(1.0) * std::pow(10.0, -rng.uniform(0, 6));
+        const int n = rng.uniform(0, 300);
+        std::vector<Eigen::Vector2d> p1(n), p2(n);
+        for (int i = 0; i < n; ++i) {
+            p1[i] = Eigen::Vector2d(rng.uniform(-100.0, 1300.0), rng.uniform(-100.0, 1000.0));
+            p2[i] = Eigen::Vector2d(rng.uniform(-100.0, 1300.0), rng.uniform(-100.0, 1000.0));
+        }
+        if (n > 0 && trial == 0) { // at the epipole of both images: infinite distance
+            F = skew(Eigen::Vector3d(0, 0, 1));
+            p1[0] = p2[0] = Eigen::Vector2d::Zero();
+        }
+        // A threshold equal to one point's distance: strictly below it is outside.
+        const double thresholdSquared =
+            n > 1 ? sampsonDistanceSquared(F, p1[1], p2[1]) : rng.uniform(0.1, 10.0);
+        std::vector<uchar> within(3, 7); // a reused buffer of another size
+        markWithinSampsonDistance(F, p1, p2, thresholdSquared, within);
+        ASSERT_EQ(within.size(), static_cast<size_t>(n));
+        for (int i = 0; i < n; ++i)
+            EXPECT_EQ(within[i], sampsonDistanceSquared(F, p1[i], p2[i]) < thresholdSquared ? 1 : 0)
+                << "trial " << trial << " point " << i;
+    }
+}
+
+// Hartley's normalization of both images in one pass gives the bits of the textbook computation,
+// one image at a time.
+TEST(Rcme_Normalization, both_images_at_once_equal_one_at_a_time)
+{
+    const auto reference = [](const std::vector<Eigen::Vector2d>& points,
+                              const std::vector<int>& indices, Eigen::Matrix3d& T) {
+        Eigen::Vector2d centroid = Eigen::Vector2d::Zero();
+        for (int i : indices)
+            centroid += points[static_cast<size_t>(i)];
+        centroid /= static_cast<double>(indices.size());
+        double meanDistance = 0;
+        for (int i : indices)
+            meanDistance += (points[static_cast<size_t>(i)] - centroid).norm();
+        meanDistance /= static_cast<double>(indices.size());
+        if (!(meanDistance > 1e-9 * (1.0 + centroid.norm())))
+            return false;
+        const double scale = std::sqrt(2.0) / meanDistance;
+        T << scale, 0, -scale * centroid.x(), 0, scale, -scale * centroid.y(), 0, 0, 1;
+        return true;
+    };
+    cv::RNG rng(31);
+    for (int trial = 0; trial < 40; ++trial) {
+        const int n = rng.uniform(1, 2000);
+        std::vector<Eigen::Vector2d> p1(n), p2(n);
+        for (int i = 0; i < n; ++i) {
+            p1[i] = Eigen::Vector2d(rng.uniform(-100.0, 1300.0), rng.uniform(-100.0, 1000.0));
+            p2[i] = trial == 1 ? Eigen::Vector2d(5, 5) // coincident points: no normalization
+                               : Eigen::Vector2d(rng.uniform(0.0, 4000.0), rng.uniform(0.0, 3.0));
+        }
+        std::vector<int> indices;
+        for (int i = 0; i < n; ++i)
+            if (rng.uniform(0, 3) > 0)
+                indices.push_back(i);
+        if (indices.empty())
+            indices.push_back(0);
+        Eigen::Matrix3d T1, T2, R1, R2;
+        const bool expected = reference(p1, indices, R1) & reference(p2, indices, R2);
+        ASSERT_EQ(normalizingTransforms(p1, p2, indices, T1, T2), expected) << "trial " << trial;
+        if (!expected)
+            continue;
+        EXPECT_EQ(std::memcmp(T1.data(), R1.data(), sizeof(T1)), 0) << "trial " << trial;
+        EXPECT_EQ(std::memcmp(T2.data(), R2.data(), sizeof(T2)), 0) << "trial " << trial;
+    }
+}
+
 } // namespace
 } // namespace opencv_test
 

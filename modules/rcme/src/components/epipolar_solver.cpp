@@ -71,8 +71,8 @@ public:
         if (static_cast<int>(sample.size()) != m || (problem_.essential && !data.calibrated))
             return 0;
         Eigen::Matrix3d T1 = data.Kinv, T2 = data.Kinv;
-        if (!problem_.essential && (!normalizingTransform(data.points1, sample, T1) ||
-                                    !normalizingTransform(data.points2, sample, T2)))
+        if (!problem_.essential &&
+            !normalizingTransforms(data.points1, data.points2, sample, T1, T2))
             return 0;
         Eigen::Vector3d x1[kMaxSampleSize], x2[kMaxSampleSize];
         for (int k = 0; k < m; ++k) {

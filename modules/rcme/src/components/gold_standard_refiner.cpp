@@ -9,6 +9,7 @@
 #include "framework/model_space.hpp"
 #include "geometry/epipolar.hpp"
 #include "geometry/motion_parameterization.hpp"
+#include "geometry/sampson_gradients.hpp"
 
 namespace cv {
 namespace rcme {
@@ -67,10 +68,8 @@ private:
     static void takeBand(const TwoViewData& data, const Eigen::Matrix3d& F,
                          std::vector<uchar>& band)
     {
-        const double threshold2 = data.threshold * data.threshold;
-        band.resize(data.points1.size());
-        for (size_t i = 0; i < band.size(); ++i)
-            band[i] = sampsonDistanceSquared(F, data.points1[i], data.points2[i]) < threshold2;
+        markWithinSampsonDistance(F, data.points1, data.points2, data.threshold * data.threshold,
+                                  band);
     }
 
     // Fits on `selection` and takes the fit's band as the next selection, until it no longer

@@ -133,8 +133,8 @@ double sampsonCost(const TwoViewData& data, const std::vector<int>& inliers,
 
 // Gauss-Newton system J^T J, J^T r of the Sampson distances at the problem's current state. The
 // gradients come a block of points at a time (sampsonGradientsOfBlock, vectorized); the sums run
-// over the points in order, each entry adding g_a g_b as a full outer product would, and J^T J
-// is symmetric: the same bits as sampsonDistanceAndGradient's per point, for half the products.
+// over the points in order (accumulateNormalEquations), each entry adding g_a g_b as a full outer
+// product would: the same bits as sampsonDistanceAndGradient's per point.
 template <class Problem>
 void normalEquations(const TwoViewData& data, const std::vector<int>& inliers,
                      const Problem& problem,
@@ -149,28 +149,17 @@ void normalEquations(const TwoViewData& data, const std::vector<int>& inliers,
     CoordinateBlock block;
     double distance[B], gradients[P * B];
     uchar valid[B];
-    double upper[P][P] = {}, rhs[P] = {};
+    double normal[P][P + 1] = {};
     for (size_t start = 0; start < inliers.size(); start += B) {
         const int count = block.gather(data, inliers, start);
         sampsonGradientsOfBlock(F, dF, P, block.x1, block.y1, block.x2, block.y2, count, distance,
                                 gradients, valid);
-        for (int j = 0; j < count; ++j) {
-            if (!valid[j])
-                continue;
-            double g[P];
-            for (int k = 0; k < P; ++k)
-                g[k] = gradients[k * B + j];
-            for (int a = 0; a < P; ++a) {
-                for (int b = a; b < P; ++b)
-                    upper[a][b] += g[a] * g[b];
-                rhs[a] += g[a] * distance[j];
-            }
-        }
+        accumulateNormalEquations(P, distance, gradients, valid, count, &normal[0][0]);
     }
     for (int a = 0; a < P; ++a) {
-        Jtr(a) = rhs[a];
+        Jtr(a) = normal[a][P];
         for (int b = a; b < P; ++b)
-            JtJ(a, b) = JtJ(b, a) = upper[a][b];
+            JtJ(a, b) = JtJ(b, a) = normal[a][b];
     }
 }
 
@@ -419,8 +408,7 @@ bool fitModel(const TwoViewData& data, ModelForm form, const std::vector<int>& i
     if (indices.size() < static_cast<size_t>(FundamentalProblem::kDof))
         return false;
     Eigen::Matrix3d T1, T2;
-    if (!normalizingTransform(data.points1, indices, T1) ||
-        !normalizingTransform(data.points2, indices, T2))
+    if (!normalizingTransforms(data.points1, data.points2, indices, T1, T2))
         return false;
     FundamentalProblem problem(T1, T2, T2.transpose().inverse() * model.F * T1.inverse());
     fitProblem(data, indices, maxIterations, uncertainty, problem, model, confirmed);

@@ -7,22 +7,43 @@ namespace cv {
 namespace rcme {
 namespace detail {
 
-bool normalizingTransform(const std::vector<Eigen::Vector2d>& points,
-                          const std::vector<int>& indices, Eigen::Matrix3d& T)
+namespace {
+
+bool similarityOf(const Eigen::Vector2d& centroid, double meanDistance, Eigen::Matrix3d& T)
 {
-    Eigen::Vector2d centroid = Eigen::Vector2d::Zero();
-    for (int i : indices)
-        centroid += points[static_cast<size_t>(i)];
-    centroid /= static_cast<double>(indices.size());
-    double meanDistance = 0;
-    for (int i : indices)
-        meanDistance += (points[static_cast<size_t>(i)] - centroid).norm();
-    meanDistance /= static_cast<double>(indices.size());
     if (!(meanDistance > 1e-9 * (1.0 + centroid.norm())))
         return false;
     const double scale = std::sqrt(2.0) / meanDistance;
     T << scale, 0, -scale * centroid.x(), 0, scale, -scale * centroid.y(), 0, 0, 1;
     return true;
+}
+
+} // namespace
+
+bool normalizingTransforms(const std::vector<Eigen::Vector2d>& points1,
+                           const std::vector<Eigen::Vector2d>& points2,
+                           const std::vector<int>& indices, Eigen::Matrix3d& T1,
+                           Eigen::Matrix3d& T2)
+{
+    // The two images' sums side by side, each in the indices' order: each addition waits for the
+    // previous one of its own sum only, so a large set takes about half the time of one image
+    // after the other, with the same sums.
+    Eigen::Vector2d centroid1 = Eigen::Vector2d::Zero(), centroid2 = Eigen::Vector2d::Zero();
+    for (int i : indices) {
+        centroid1 += points1[static_cast<size_t>(i)];
+        centroid2 += points2[static_cast<size_t>(i)];
+    }
+    const double count = static_cast<double>(indices.size());
+    centroid1 /= count;
+    centroid2 /= count;
+    double meanDistance1 = 0, meanDistance2 = 0;
+    for (int i : indices) {
+        meanDistance1 += (points1[static_cast<size_t>(i)] - centroid1).norm();
+        meanDistance2 += (points2[static_cast<size_t>(i)] - centroid2).norm();
+    }
+    meanDistance1 /= count;
+    meanDistance2 /= count;
+    return similarityOf(centroid1, meanDistance1, T1) && similarityOf(centroid2, meanDistance2, T2);
 }
 
 Eigen::Matrix3d normalizeFundamental(const Eigen::Matrix3d& F)
@@ -141,16 +162,32 @@ int recoverMotionFromEssential(const Eigen::Matrix3d& E,
     W << 0, -1, 0, 1, 0, 0, 0, 0, 1;
     const Eigen::Matrix3d rotations[2] = {U * W * V.transpose(), U * W.transpose() * V.transpose()};
     const Eigen::Vector3d direction = U.col(2).normalized();
+    // The four candidates (R_k, +-direction) counted in one pass, each point's rays computed once.
+    // triangulateDepths is linear in t and negating is exact, so the depths under -direction are
+    // those under +direction negated, bit for bit: countPointsInFront of each candidate.
+    int counts[4] = {0, 0, 0, 0};
+    const auto inFront = [distanceThreshold](double d1, double d2) {
+        return d1 > 0 && d2 > 0 && d1 < distanceThreshold && d2 < distanceThreshold;
+    };
+    for (size_t i = 0; i < points1.size(); ++i) {
+        if (selection && !(*selection)[i])
+            continue;
+        const Eigen::Vector3d y1 = Kinv * homogeneous(points1[i]);
+        const Eigen::Vector3d y2 = Kinv * homogeneous(points2[i]);
+        for (int k = 0; k < 2; ++k) {
+            double d1 = 0, d2 = 0;
+            if (!triangulateDepths(rotations[k], direction, y1, y2, d1, d2))
+                continue;
+            counts[2 * k] += inFront(d1, d2);
+            counts[2 * k + 1] += inFront(-d1, -d2);
+        }
+    }
     int bestCount = -1;
     for (int candidate = 0; candidate < 4; ++candidate) {
-        const Eigen::Matrix3d& Rc = rotations[candidate / 2];
-        const Eigen::Vector3d tc = (candidate % 2 == 0) ? direction : Eigen::Vector3d(-direction);
-        const int count = countPointsInFront(Rc, tc, points1, points2, Kinv, selection, nullptr,
-                                             distanceThreshold);
-        if (count > bestCount) {
-            bestCount = count;
-            R = Rc;
-            t = tc;
+        if (counts[candidate] > bestCount) {
+            bestCount = counts[candidate];
+            R = rotations[candidate / 2];
+            t = (candidate % 2 == 0) ? direction : Eigen::Vector3d(-direction);
         }
     }
     return bestCount;

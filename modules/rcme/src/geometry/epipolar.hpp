@@ -62,11 +62,14 @@ bool sampsonDistanceAndGradient(const Eigen::Matrix3d& F, const Eigen::Matrix3d*
     return true;
 }
 
-/** Hartley's normalization: the similarity T moving the centroid of points[indices] to the origin
-and their mean distance to sqrt(2), so that the entries of F in normalized coordinates have
-comparable magnitudes. False when the points coincide. */
-bool normalizingTransform(const std::vector<Eigen::Vector2d>& points,
-                          const std::vector<int>& indices, Eigen::Matrix3d& T);
+/** Hartley's normalization of both images: the similarity T1 (T2) moving the centroid of
+points1[indices] (points2[indices]) to the origin and their mean distance to sqrt(2), so that the
+entries of F in normalized coordinates have comparable magnitudes. False when the points of either
+image coincide. */
+bool normalizingTransforms(const std::vector<Eigen::Vector2d>& points1,
+                           const std::vector<Eigen::Vector2d>& points2,
+                           const std::vector<int>& indices, Eigen::Matrix3d& T1,
+                           Eigen::Matrix3d& T2);
 
 //! Scales F to unit Frobenius norm with its largest-magnitude entry positive (a fixed sign).
 Eigen::Matrix3d normalizeFundamental(const Eigen::Matrix3d& F);

@@ -91,6 +91,43 @@ squaredDistancesOfBlock(const double* __restrict f, const double* __restrict x1,
     }
 }
 
+// The points are interleaved (x, y) pairs, as TwoViewData holds them.
+RCME_VECTOR_CLONES RCME_SPECULATIVE_MATH void
+withinDistanceLoop(const double* __restrict f, const double* __restrict a,
+                   const double* __restrict b, size_t count, double thresholdSquared,
+                   uchar* __restrict within)
+{
+    for (size_t i = 0; i < count; ++i) {
+        const PointTerms p = pointTerms(f, a[2 * i], a[2 * i + 1], b[2 * i], b[2 * i + 1]);
+        const double squared =
+            p.jj > 0 ? p.r * p.r / p.jj : std::numeric_limits<double>::infinity();
+        within[i] = squared < thresholdSquared ? 1 : 0;
+    }
+}
+
+// Every entry of the P x (P + 1) system, the lower triangle too: whole rows are vector
+// operations, and a point's products reach each entry in the order of a loop over the points.
+template <int P>
+RCME_VECTOR_CLONES void
+normalEquationsLoop(const double* __restrict distance, const double* __restrict gradients,
+                    const uchar* __restrict valid, int count, double* __restrict normal)
+{
+    double sums[P][P + 1];
+    std::copy(normal, normal + P * (P + 1), &sums[0][0]);
+    for (int j = 0; j < count; ++j) {
+        if (!valid[j])
+            continue;
+        double g[P + 1];
+        for (int k = 0; k < P; ++k)
+            g[k] = gradients[k * kSampsonBlock + j];
+        g[P] = distance[j];
+        for (int a = 0; a < P; ++a)
+            for (int b = 0; b <= P; ++b)
+                sums[a][b] += g[a] * g[b];
+    }
+    std::copy(&sums[0][0], &sums[0][0] + P * (P + 1), normal);
+}
+
 void rowMajor(const Eigen::Matrix3d& M, double* out)
 {
     for (int r = 0; r < 3; ++r)
@@ -124,6 +161,33 @@ void sampsonDistancesSquaredOfBlock(const Eigen::Matrix3d& F, const double* x1, 
     double f[9];
     rowMajor(F, f);
     squaredDistancesOfBlock(f, x1, y1, x2, y2, count, distanceSquared);
+}
+
+void accumulateNormalEquations(int parameters, const double* distance, const double* gradients,
+                               const uchar* valid, int count, double* normal)
+{
+    CV_DbgAssert(count <= kSampsonBlock);
+    if (parameters == 5)
+        normalEquationsLoop<5>(distance, gradients, valid, count, normal);
+    else if (parameters == 7)
+        normalEquationsLoop<7>(distance, gradients, valid, count, normal);
+    else
+        CV_Error(Error::StsNotImplemented, "normal equations of 5 or 7 parameters only");
+}
+
+void markWithinSampsonDistance(const Eigen::Matrix3d& F,
+                               const std::vector<Eigen::Vector2d>& points1,
+                               const std::vector<Eigen::Vector2d>& points2, double thresholdSquared,
+                               std::vector<uchar>& within)
+{
+    CV_DbgAssert(points1.size() == points2.size());
+    within.resize(points1.size());
+    if (points1.empty())
+        return;
+    double f[9];
+    rowMajor(F, f);
+    withinDistanceLoop(f, points1.data()->data(), points2.data()->data(), points1.size(),
+                       thresholdSquared, within.data());
 }
 
 } // namespace detail

@@ -29,6 +29,22 @@ void sampsonDistancesSquaredOfBlock(const Eigen::Matrix3d& F, const double* x1, 
                                     const double* x2, const double* y2, int count,
                                     double* distanceSquared);
 
+/** Adds a block's terms to the Gauss-Newton system of the Sampson distances: for each point j
+< count with valid[j], in order, normal[a][b] += g_a g_b and normal[a][P] += g_a d_j, where g_k =
+gradients[k * kSampsonBlock + j], d_j = distance[j] and P = `parameters` (5 or 7); `normal` is P
+rows of P + 1 (J^T J, then J^T r), row-major. Each entry is the sum a point-by-point loop makes, in
+the same order (the same bits); the entries are summed side by side, vectorized. */
+void accumulateNormalEquations(int parameters, const double* distance, const double* gradients,
+                               const uchar* valid, int count, double* normal);
+
+/** within[i] = 1 where sampsonDistanceSquared(F, points1[i], points2[i]) < thresholdSquared (the
+same bits), 0 elsewhere; `within` is sized to the points. One vectorized pass over a whole set
+(the final fit's band). */
+void markWithinSampsonDistance(const Eigen::Matrix3d& F,
+                               const std::vector<Eigen::Vector2d>& points1,
+                               const std::vector<Eigen::Vector2d>& points2, double thresholdSquared,
+                               std::vector<uchar>& within);
+
 } // namespace detail
 } // namespace rcme
 } // namespace cv
