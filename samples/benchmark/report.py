@@ -304,6 +304,21 @@ def auc_table(groups, method_names):
     return _table(["method"] + [label for label, _ in groups], lines)
 
 
+def auc_targets(groups, ours, peer):
+    """groups: [(runs label, [(group label, rows)])]; a row per group where both methods ran:
+    AUC@10 of `ours` against `peer`'s and whether it is at least as high (met / not met)."""
+    lines = []
+    for runs, subgroups in groups:
+        for label, rows in subgroups:
+            a, b = auc(_select(rows, method=ours)), auc(_select(rows, method=peer))
+            if a is None or b is None:
+                continue
+            lines.append([runs, label, "%.4f >= %.4f" % (a, b),
+                          "met" if a >= b else "**not met**"])
+    return _table(["runs", "dataset", "AUC@%.0f: %s >= %s" % (AUC_LIMIT_DEG, ours, peer), ""],
+                  lines)
+
+
 def confusion_summary(groups, method_names):
     """groups: [(label, rows)]; a row per group and method with the targets' three rates."""
     lines = []

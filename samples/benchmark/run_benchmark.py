@@ -284,15 +284,34 @@ def confusion_section(run, names, real_datasets, N_max):
                 + [("all suites", defaults + corridor_adaptive + hard_adaptive)],
                 DEFAULT_SETTINGS_METHODS)]
     calibrated = [r for r in real if r["dataset"] in pose]
+    calibrated_adaptive = [r for r in defaults if r["dataset"] in pose]
+    pose_datasets = [d for d in real_datasets if d in pose]
+
+    def per_dataset(rows):
+        return [(d, [r for r in rows if r["dataset"] == d]) for d in pose_datasets] + [
+            ("all calibrated pairs", rows)]
+
     lines += ["### Accuracy: AUC@%.0f on the calibrated real pairs\n" % report.AUC_LIMIT_DEG,
               "Mean over the runs of max(0, 1 - e / %.0f deg), e = max(rotation error, "
               "translation direction error); a run without a motion (a flag, no model) counts as "
               "an infinite error. Exactly N = %d: %d runs per rcme method (every seed), one per "
               "pair for the peers; adaptive: one run per pair.\n" % (
-                  report.AUC_LIMIT_DEG, N_max, sum(r["method"] == methods.DEFAULT_METHOD for r in calibrated)),
+                  report.AUC_LIMIT_DEG, N_max,
+                  sum(r["method"] == methods.DEFAULT_METHOD for r in calibrated)),
               report.auc_table([("exactly N = %d" % N_max, calibrated),
-                                ("adaptive", [r for r in defaults if r["dataset"] in pose])],
-                               names)]
+                                ("adaptive", calibrated_adaptive)], names) + "\n",
+              "Per dataset, exactly N = %d:\n" % N_max,
+              report.auc_table(per_dataset(calibrated), names) + "\n"]
+    if calibrated_adaptive:
+        lines += ["Per dataset, adaptive:\n",
+                  report.auc_table(per_dataset(calibrated_adaptive),
+                                   DEFAULT_SETTINGS_METHODS) + "\n"]
+    if any(r["method"] == POSELIB for r in calibrated):
+        lines += ["### Targets: AUC@%.0f of the default against PoseLib per dataset\n"
+                  % report.AUC_LIMIT_DEG,
+                  report.auc_targets([("exactly N = %d" % N_max, per_dataset(calibrated)),
+                                      ("adaptive", per_dataset(calibrated_adaptive))],
+                                     methods.DEFAULT_METHOD, POSELIB) + "\n"]
     lines += ["### Per dataset, exactly N = %d\n" % N_max,
               report.confusion_table(real, names, real_datasets)]
     if corridor_rows:
@@ -320,6 +339,7 @@ def confusion_section(run, names, real_datasets, N_max):
 
 
 DEFAULT_SETTINGS_N = 1000
+POSELIB = "PoseLib relpose"  # the peer of issue 33's accuracy targets
 DEFAULT_SETTINGS_METHODS = [m for m in [methods.DEFAULT_METHOD, "RCME", "Standard",
                                          "cv USAC_DEFAULT", "cv USAC_ACCURATE",
                                          "cv E USAC_MAGSAC", "PoseLib relpose"]
@@ -462,7 +482,7 @@ def write_sparse_report(args, run, command):
     targets = []
     for label, rows in (("exactly N = %d" % N, rows_exact), ("adaptive", rows_adaptive)):
         ours = sparse_counts(rows, methods.DEFAULT_METHOD)
-        peer = sparse_counts(rows, "PoseLib relpose")
+        peer = sparse_counts(rows, POSELIB)
         if ours is None or peer is None:
             continue
         targets.append([label, "right %.1f %% >= PoseLib's %.1f %%" % (100 * ours[0],
@@ -473,6 +493,11 @@ def write_sparse_report(args, run, command):
     if targets:
         lines += ["### Targets: the default against PoseLib (shares of the judged runs)\n",
                   report._table(["runs", "target", ""], targets) + "\n"]
+    if any(r["method"] == POSELIB for r in rows_exact):
+        lines += ["AUC@%.0f per dataset:\n" % report.AUC_LIMIT_DEG,
+                  report.auc_targets([("exactly N = %d" % N, groups(rows_exact)),
+                                      ("adaptive", groups(rows_adaptive))],
+                                     methods.DEFAULT_METHOD, POSELIB) + "\n"]
     path = os.path.join(args.out, SPARSE_REPORT)
     with open(path, "w") as f:
         f.write("\n".join(lines))

@@ -107,6 +107,18 @@ class Auc(unittest.TestCase):
         self.assertAlmostEqual(report.auc(rows), (1.0 + 0.5 + 0.0 + 0.0) / 4)
         self.assertIsNone(report.auc([]))
 
+    def test_targets_per_dataset_compare_the_default_with_the_peer(self):
+        exact = {"ok": True, "rot": 0.0, "trans": 0.0}
+        off = {"ok": True, "rot": 5.0, "trans": 0.0}
+        rows = [dict(exact, method="ours", dataset="a"), dict(off, method="peer", dataset="a"),
+                dict(off, method="ours", dataset="b"), dict(exact, method="peer", dataset="b"),
+                dict(exact, method="ours", dataset="c")]
+        groups = [(d, [r for r in rows if r["dataset"] == d]) for d in "abc"]
+        table = report.auc_targets([("runs", groups)], "ours", "peer").splitlines()
+        self.assertEqual(len(table), 4)  # header, rule, a and b: c has no run of the peer
+        self.assertEqual(table[2], "| runs | a | 1.0000 >= 0.5000 | met |")
+        self.assertEqual(table[3], "| runs | b | 0.5000 >= 1.0000 | **not met** |")
+
 
 def _loop(centres, rotations):
     """The reports of pairs (0, 1), (1, 2), (0, 2) of three exact cameras x = R (X - C): R, and t
