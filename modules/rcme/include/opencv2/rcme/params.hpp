@@ -238,7 +238,7 @@ struct CV_EXPORTS_W_SIMPLE Params
     CV_PROP_RW bool degeneracyTest;
     /** The ambiguity test, with a camera matrix: the loop remembers the best hypothesis of each
     distinct motion it saw; after it, those with at least half the selected model's support and
-    a truncated cost at most sigma^2 per point above the selected model's as they stand (a
+    a truncated cost at most 0.6 sigma^2 per point above the selected model's as they stand (a
     costlier one does not come within the margin when refitted) are refitted on the points they
     explain, the one of least truncated cost (MSAC, a point behind a camera costing as an
     outlier) is returned, and when a distinct motion's cost is within this many sigma^2 of it
