@@ -1000,11 +1000,8 @@ def five_dof_sections(rows, datasets_seen, pairs, sigma):
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--data", default=os.path.join(REPO_ROOT, "..", "shared", "data"))
-    ap.add_argument("--cache", default=matching.default_cache_dir(REPO_ROOT))
-    ap.add_argument("--out", default=os.path.join(REPO_ROOT, "doc", "benchmark",
-                                                  "covariance_calibration.md"))
+    ap = matching.benchmark_arguments(__doc__, REPO_ROOT, os.path.join(
+        REPO_ROOT, "doc", "benchmark", "covariance_calibration.md"))
     ap.add_argument("--sigma", type=float, default=1.0, help="Params.sigma on real pairs (px)")
     ap.add_argument("--synthetic", action="store_true", help="also the synthetic scenes")
     ap.add_argument("--synthetic-only", action="store_true", help="only the synthetic scenes")

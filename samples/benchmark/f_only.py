@@ -22,7 +22,6 @@ Report.rejectedF. Pairs whose true matches cannot tell one epipole from another
     PYTHONPATH=build/python python3 samples/benchmark/f_only.py   (without PoseLib)
 
 Writes a markdown report (default build/f_only.md) and prints the targets' figures."""
-import argparse
 import json
 import os
 import sys
@@ -54,10 +53,8 @@ QUICK_PAIRS = {"magsac/Brussels", "magsac/corr", "magsac/booksh", "adelaide/bony
 
 
 def parse_args(argv):
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--data", default=os.path.join(REPO_ROOT, "..", "shared", "data"))
-    ap.add_argument("--out", default=os.path.join(REPO_ROOT, "build", "f_only.md"))
-    ap.add_argument("--cache", default=matching.default_cache_dir(REPO_ROOT))
+    ap = matching.benchmark_arguments(__doc__, REPO_ROOT,
+                                      os.path.join(REPO_ROOT, "build", "f_only.md"))
     ap.add_argument("--hard-seeds", type=int, default=10)
     ap.add_argument("--quick", action="store_true",
                     help="five given pairs, two SIFT pairs, one seed of the hard cases")

@@ -3,6 +3,7 @@
 The cache key is a hash of the two images' contents and the matching parameters (not their
 modification times: a re-copied data folder keeps its cache); the points are stored in the
 images' original pixel coordinates even when the images are downscaled for detection."""
+import argparse
 import hashlib
 import json
 import os
@@ -15,6 +16,17 @@ MATCHING_VERSION = 2  # bump when the matching changes, so that old cache entrie
 
 def default_cache_dir(repo_root):
     return os.path.join(repo_root, "build", "benchmark_cache")
+
+
+def benchmark_arguments(doc, repo_root, out):
+    """A benchmark script's argument parser, described by the first line of its `doc`, with the
+    options the scripts share: --data (the real data beside the checkout), --cache (these matches'
+    cache) and --out (default `out`)."""
+    ap = argparse.ArgumentParser(description=doc.splitlines()[0])
+    ap.add_argument("--data", default=os.path.join(repo_root, "..", "shared", "data"))
+    ap.add_argument("--cache", default=default_cache_dir(repo_root))
+    ap.add_argument("--out", default=out)
+    return ap
 
 
 class Matcher:

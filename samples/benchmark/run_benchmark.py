@@ -8,7 +8,6 @@ the corridor (Table I) and every real sequence and pair in ../shared/data (Table
 
 Writes <out>/report.md and PNG plots (default doc/benchmark/), and the sparse-pairs suite's
 <out>/sparse_pairs.md; caches SIFT matches under build/benchmark_cache/. See doc/benchmark.md."""
-import argparse
 import datetime
 import json
 import os
@@ -74,10 +73,8 @@ def machine_description():
 
 
 def parse_args(argv):
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--data", default=os.path.join(REPO_ROOT, "..", "shared", "data"))
-    ap.add_argument("--out", default=os.path.join(REPO_ROOT, "doc", "benchmark"))
-    ap.add_argument("--cache", default=matching.default_cache_dir(REPO_ROOT))
+    ap = matching.benchmark_arguments(__doc__, REPO_ROOT,
+                                      os.path.join(REPO_ROOT, "doc", "benchmark"))
     ap.add_argument("--quick", action="store_true",
                     help="a few pairs per dataset, N = 200, one seed")
     ap.add_argument("--iterations", type=int, nargs="+", default=[200, 500, 1000])

@@ -17,7 +17,6 @@ solver/8-point and score-per-point/count (modules/rcme/perf), run once by this s
 default's call in its parts (the setup, the loop, each stage after it: how often it runs, its time
 per call, the verdicts it returns) comes from rcme_stage_costs (samples/benchmark/stage_costs.cpp)
 on the same pairs; --stages-only writes that section alone."""
-import argparse
 import json
 import os
 import struct
@@ -311,10 +310,8 @@ def write(path, pairs, N, exact, adaptive, floor, args, stages=None):
 
 def main(argv=None):
     global CONFIDENCE
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--data", default=os.path.join(REPO_ROOT, "..", "shared", "data"))
-    ap.add_argument("--cache", default=matching.default_cache_dir(REPO_ROOT))
-    ap.add_argument("--out", default=os.path.join(REPO_ROOT, "doc", "speed.md"))
+    ap = matching.benchmark_arguments(__doc__, REPO_ROOT,
+                                      os.path.join(REPO_ROOT, "doc", "speed.md"))
     ap.add_argument("--iterations", type=int, default=1000)
     ap.add_argument("--repeats", type=int, default=3)
     ap.add_argument("--confidence", type=float, default=CONFIDENCE,

@@ -16,7 +16,6 @@ Cells: the suites of run_benchmark.py's confusion summary, run as it runs them (
 every real pair with --seeds seeds, the corridor and the hard cases with one; adaptive at the
 benchmark's confidence 0.99, seed 0): right / undetected / caught / false alarm, as its report
 counts them."""
-import argparse
 import os
 import sys
 import time
@@ -129,11 +128,8 @@ def time_table(pairs, repeats):
 
 def main(argv=None):
     global N
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--data", default=os.path.join(REPO_ROOT, "..", "shared", "data"))
-    ap.add_argument("--cache", default=matching.default_cache_dir(REPO_ROOT))
-    ap.add_argument("--out", default=os.path.join(REPO_ROOT, "doc", "benchmark",
-                                                  "stage_value.md"))
+    ap = matching.benchmark_arguments(
+        __doc__, REPO_ROOT, os.path.join(REPO_ROOT, "doc", "benchmark", "stage_value.md"))
     ap.add_argument("--repeats", type=int, default=3, help="calls per pair and variant, timing")
     ap.add_argument("--seeds", type=int, default=3, help="seeds per real pair, exactly N")
     ap.add_argument("--iterations", type=int, default=N, help="N (default %(default)s)")

@@ -49,8 +49,8 @@ void setEstimate(Report& report, const detail::Model& model)
         report.E = toMat(detail::skew(model.motion->t) * model.motion->R);
         report.R = toMat(model.motion->R);
         report.t = toMat(model.motion->t);
-        if (model.uncertaintyDof == detail::MotionTangent::kDof)
-            setMotionUncertainty(model.covariance.topLeftCorner<5, 5>(), report);
+        if (const auto* uncertainty = model.uncertainty.as<detail::MotionUncertainty>())
+            setMotionUncertainty(uncertainty->covariance, report);
     }
     report.noiseSigma = model.noiseSigma;
 }

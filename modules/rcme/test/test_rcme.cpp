@@ -183,9 +183,10 @@ TEST(Rcme_Boxes, quality_test_sign_tight_passes_loose_fails)
     std::iota(all.begin(), all.end(), 0);
     ASSERT_TRUE(fitModelOn(inliers, ModelForm::kMotion, all, 0,
                            tight)); // covariance from ~250 inliers: tight
-    ASSERT_EQ(tight.uncertaintyDof, 5);
+    ASSERT_NE(tight.uncertainty.as<MotionUncertainty>(), nullptr);
     Model loose = tight;
-    loose.covariance *= 1e8; // inliers' variances far above the noise floor
+    loose.uncertainty.as<MotionUncertainty>()->covariance *=
+        1e8; // inliers' variances far above the noise floor
 
     Params params = rcmeParams(0);
     auto scorer = createEntropyScorer(data, entropyOptions(params), 8, params.maxIterations);
@@ -263,8 +264,9 @@ TEST(Rcme_Boxes, propagated_covariance_matches_monte_carlo)
     const std::vector<int> sample = {3, 29, 61, 97, 130, 166, 201, 240};
     Model atTruth = trueMotion(truth, exact);
     ASSERT_TRUE(fitModelOn(exact, ModelForm::kMotion, sample, 0, atTruth));
-    ASSERT_EQ(atTruth.uncertaintyDof, 5);
-    const Eigen::Matrix<double, 5, 5> predicted = atTruth.covariance.topLeftCorner<5, 5>();
+    ASSERT_NE(atTruth.uncertainty.as<MotionUncertainty>(), nullptr);
+    const Eigen::Matrix<double, 5, 5> predicted =
+        atTruth.uncertainty.as<MotionUncertainty>()->covariance;
 
     const MotionTangent tangent(atTruth.motion->R, atTruth.motion->t);
     RNG rng(7);
@@ -356,7 +358,8 @@ TEST(Rcme_Boxes, propagated_variances_of_a_block_equal_those_of_one_point)
             inliers.push_back(i);
         ASSERT_TRUE(fitModelOn(data, calibrated ? ModelForm::kMotion : ModelForm::kFundamental,
                                inliers, 0, model));
-        ASSERT_EQ(model.uncertaintyDof, calibrated ? 5 : 7);
+        ASSERT_TRUE(calibrated ? model.uncertainty.as<MotionUncertainty>() != nullptr
+                               : model.uncertainty.as<FundamentalUncertainty>() != nullptr);
         if (!calibrated) {
             // Forward motion with the epipoles at the origin, where F x1 and F^T x2 vanish
             // exactly; the covariance is the fit's.

@@ -26,7 +26,7 @@ public:
 
     bool isModelGood(const TwoViewData& data, const std::vector<int>& sample, Model& model) override
     {
-        if (model.uncertaintyDof == 0)
+        if (!model.uncertainty.isKnown())
             return false;
         const ResidualUncertainty uncertainty(model, sigma_);
         for (int i : sample) {

@@ -43,7 +43,7 @@ bool decideMotionOnInliers(const TwoViewData& data, Scorer& scorer, Fit& fit)
         return false;
     if ((model.motion->R - before.R).norm() < 1e-9 && (model.motion->t - before.t).norm() < 1e-9)
         return true;
-    if (model.uncertaintyDof > 0) {
+    if (model.uncertainty.isKnown()) {
         std::vector<int> inliers;
         maskIndices(fit.inliers, inliers);
         fitModelOn(data, ModelForm::kMotion, inliers, 0, model);

@@ -53,6 +53,11 @@ struct RawCostGate
     double maxCost;
 };
 
+/** The size of the evenly spaced subset on which the stages that weigh rivals refit them cheaply
+(the rival decision's RefitScreen, the rival selection at the data's noise); a problem of at most
+this many points is its own subset. Each stage says what it measured with it. */
+constexpr size_t kRivalSubsetPoints = 300;
+
 /** A cheaper first refit of each rival on an evenly spaced subset of `points`: a rival whose
 subset refit costs more than `maxCost` on all the points (each at most `capSquared`) is returned
 as that refit, the others are refitted on all the points. */

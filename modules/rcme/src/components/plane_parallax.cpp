@@ -137,7 +137,7 @@ StageOutcome resolvePlaneAndParallax(const TwoViewData& data, Scorer& scorer,
         return {};
     Fit parallax{estimate.model, Score(), {}};
     parallax.model.F = best.F;
-    parallax.model.uncertaintyDof = 0;
+    parallax.model.uncertainty.reset();
     scorer.classify(data, parallax.model, parallax.inliers);
     parallax.score = scorer.score(data, parallax.model);
     return StageOutcome::revised(std::move(parallax));

@@ -67,11 +67,12 @@ bool sandwichCovariance(const TwoViewData& data, const Model& model, const std::
     const Eigen::Matrix3d F =
         data.Kinv.transpose() * skew(model.motion->t) * model.motion->R * data.Kinv;
     Matrix information = Matrix::Zero(), scatter = Matrix::Zero();
+    const Eigen::Matrix3d* directions = model.uncertainty.as<MotionUncertainty>()->directions;
     Eigen::Matrix<double, 1, P> g;
     double d = 0;
     for (size_t i = 0; i < mask.size(); ++i) {
-        if (!mask[i] || !sampsonDistanceAndGradient<P>(F, model.directions, data.points1[i],
-                                                       data.points2[i], d, g))
+        if (!mask[i] ||
+            !sampsonDistanceAndGradient<P>(F, directions, data.points1[i], data.points2[i], d, g))
             continue;
         information.noalias() += g.transpose() * g;
         scatter.noalias() += (d * d) * (g.transpose() * g);
@@ -102,20 +103,21 @@ public:
         const int count = static_cast<int>(
             std::count(estimate.mask.begin(), estimate.mask.end(), static_cast<uchar>(1)));
         const int dof = count - P;
-        if (model.uncertaintyDof != P || !model.motion || !data.useEstimatedNoise || dof < 1 ||
+        const MotionUncertainty* uncertainty = model.uncertainty.as<MotionUncertainty>();
+        if (!uncertainty || !model.motion || !data.useEstimatedNoise || dof < 1 ||
             !std::isfinite(model.noiseSigma))
             return {};
         const bool estimated = usesEstimatedNoise(data, model.noiseSigma, dof);
         const double fitted = estimated ? model.noiseSigma : data.sigma;
         const double posterior =
             posteriorNoiseVariance(data.sigma, model.noiseSigma, dof, kStatedNoiseDof);
-        const Matrix modelBased = model.covariance.topLeftCorner<P, P>() *
-                                  (truncatedNoiseVariance(posterior, data.threshold) /
-                                   truncatedNoiseVariance(fitted * fitted, data.threshold));
+        const Matrix modelBased =
+            uncertainty->covariance * (truncatedNoiseVariance(posterior, data.threshold) /
+                                       truncatedNoiseVariance(fitted * fitted, data.threshold));
         StageOutcome outcome;
         Model& revised = outcome.model.emplace(model);
         Matrix sandwich;
-        revised.covariance.topLeftCorner<P, P>() =
+        revised.uncertainty.as<MotionUncertainty>()->covariance =
             estimated && sandwichCovariance(data, model, estimate.mask, count, sandwich)
                 ? raisedToSandwich(modelBased, sandwich, static_cast<double>(count))
                 : modelBased;

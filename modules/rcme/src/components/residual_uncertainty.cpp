@@ -74,49 +74,59 @@ propagateLoop(const double* f, const double* c, const double* a, const double* b
     }
 }
 
+// C with C^T C = D Sigma D^T into the first P rows of the 7 x 9 `factor` (row-major), the others
+// zero. Sigma = P^T L D L^T P, so a^T D Sigma D^T a = |D^1/2 L^T P directions a|^2.
+template <int P> void factorize(const TangentUncertainty<P>& uncertainty, double* factor)
+{
+    // Directions as rows: row k is vec(dF/dtheta_k), so that row k times a is g_k.
+    Eigen::Matrix<double, P, 9> directions;
+    for (int k = 0; k < P; ++k)
+        for (int r = 0; r < 3; ++r)
+            for (int c = 0; c < 3; ++c)
+                directions(k, 3 * r + c) = uncertainty.directions[k](r, c);
+    const Eigen::LDLT<Eigen::Matrix<double, P, P>> ldlt(uncertainty.covariance);
+    const Eigen::Matrix<double, P, 9> permuted = ldlt.transpositionsP() * directions;
+    Eigen::Map<Eigen::Matrix<double, 7, 9, Eigen::RowMajor>> rows(factor);
+    rows.setZero();
+    rows.template topRows<P>() =
+        ldlt.vectorD().cwiseMax(0.0).cwiseSqrt().asDiagonal() * (ldlt.matrixU() * permuted);
+}
+
 } // namespace
 
 ResidualUncertainty::ResidualUncertainty(const Model& model, double sigma)
     : sigmaSquared_(sigma * sigma)
 {
-    CV_Assert(model.uncertaintyDof > 0 && model.uncertaintyDof <= 7);
-    const int P = model.uncertaintyDof;
-    // Directions as rows: row k is vec(dF/dtheta_k), so that row k times a is g_k.
-    Eigen::Matrix<double, 7, 9> directions = Eigen::Matrix<double, 7, 9>::Zero();
-    for (int k = 0; k < P; ++k)
-        for (int r = 0; r < 3; ++r)
-            for (int c = 0; c < 3; ++c)
-                directions(k, 3 * r + c) = model.directions[k](r, c);
-    // Sigma = P^T L D L^T P (the unused block of the covariance is zero and gets zero pivots), so
-    // a^T D Sigma D^T a = |D^1/2 L^T P directions a|^2.
-    const Eigen::LDLT<Eigen::Matrix<double, 7, 7>> ldlt(model.covariance);
-    Eigen::Matrix<double, 7, 9> permuted = ldlt.transpositionsP() * directions;
-    Eigen::Map<Eigen::Matrix<double, 7, 9, Eigen::RowMajor>> factor(factor_);
-    factor = ldlt.vectorD().cwiseMax(0.0).cwiseSqrt().asDiagonal() * (ldlt.matrixU() * permuted);
+    CV_Assert(model.uncertainty.isKnown());
+    model.uncertainty.visitKnown([this](const auto& uncertainty) {
+        factorize(uncertainty, factor_);
+        rows_ = uncertainty.kDof;
+    });
     Eigen::Map<Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> F(F_);
     F = model.F;
-    // The motion's five parameters leave the last two rows zero (their pivots are the unused
-    // block's): a loop over five rows then gives the same sums.
-    compactFactor_ = factor.bottomRows<2>().isZero(0.0);
 }
 
 void ResidualUncertainty::evaluate(const Eigen::Vector2d& x1, const Eigen::Vector2d& x2,
                                    bool leverage, double& distanceSquared, double& variance) const
 {
     double modelTerm = 0;
-    if (compactFactor_)
-        propagate<5>(F_, factor_, x1.x(), x1.y(), x2.x(), x2.y(), distanceSquared, modelTerm);
+    if (rows_ == MotionUncertainty::kDof)
+        propagate<MotionUncertainty::kDof>(F_, factor_, x1.x(), x1.y(), x2.x(), x2.y(),
+                                           distanceSquared, modelTerm);
     else
-        propagate<7>(F_, factor_, x1.x(), x1.y(), x2.x(), x2.y(), distanceSquared, modelTerm);
+        propagate<FundamentalUncertainty::kDof>(F_, factor_, x1.x(), x1.y(), x2.x(), x2.y(),
+                                                distanceSquared, modelTerm);
     variance = flooredVariance(sigmaSquared_, leverage ? -modelTerm : modelTerm);
 }
 
 void ResidualUncertainty::evaluate(const Eigen::Vector2d* points1, const Eigen::Vector2d* points2,
                                    size_t count, double* distancesSquared, double* variances) const
 {
-    (compactFactor_ ? propagateLoop<5> : propagateLoop<7>)(F_, factor_, points1->data(),
-                                                           points2->data(), count, sigmaSquared_,
-                                                           distancesSquared, variances);
+    const auto loop = rows_ == MotionUncertainty::kDof
+                          ? propagateLoop<MotionUncertainty::kDof>
+                          : propagateLoop<FundamentalUncertainty::kDof>;
+    loop(F_, factor_, points1->data(), points2->data(), count, sigmaSquared_, distancesSquared,
+         variances);
 }
 
 } // namespace detail

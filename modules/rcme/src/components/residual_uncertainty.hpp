@@ -26,7 +26,7 @@ variance is all of its covariance on its support. */
 class ResidualUncertainty
 {
 public:
-    //! `model.uncertaintyDof` must be > 0.
+    //! The model's uncertainty must be known.
     ResidualUncertainty(const Model& model, double sigma);
 
     //! Squared Sampson distance d^2 and its variance v (pixels^2); v is kept positive.
@@ -42,7 +42,7 @@ private:
     double F_[9]; //!< row-major
     //! C with C^T C = M, row-major: a^T M a = |C a|^2 (rows beyond the model's DoF are zero).
     double factor_[7 * 9];
-    bool compactFactor_ = false; //!< rows 5 and 6 of the factor are zero
+    int rows_ = 0; //!< the model's DoF: the rows of the factor that are not zero
     double sigmaSquared_;
 };
 
@@ -55,7 +55,7 @@ void forEachUncertainInlier(const TwoViewData& data, const Model& model, double 
                             double maxVariance = std::numeric_limits<double>::infinity())
 {
     constexpr size_t kBlock = 256;
-    if (model.uncertaintyDof == 0)
+    if (!model.uncertainty.isKnown())
         return;
     const ResidualUncertainty uncertainty(model, sigma);
     double distancesSquared[kBlock], variances[kBlock];

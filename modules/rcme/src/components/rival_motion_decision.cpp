@@ -29,15 +29,14 @@ costs at most 0.6 sigma^2 per point more (plus the margin); the rival selection 
 noise weighs the others (Estimate::unweighedRivals). */
 constexpr double kMaxRawCostPerPoint = 0.6;
 
-/* Of those, a rival whose refit on an evenly spaced subset of kScreenPoints (a fifth of the time
-of the refit on all the points of a real pair) already costs more than kScreenGapPerPoint sigma^2
-per point above the selected motion on all the points is weighed as that refit: on KITTI's VO
-pairs (doc/vo_front_end.md) the subset refit's cost was at most 0.18 sigma^2 per point above the
+/* Of those, a rival whose refit on an evenly spaced subset of kRivalSubsetPoints (a fifth of the
+time of the refit on all the points of a real pair) already costs more than kScreenGapPerPoint
+sigma^2 per point above the selected motion on all the points is weighed as that refit: on KITTI's
+VO pairs (doc/vo_front_end.md) the subset refit's cost was at most 0.18 sigma^2 per point above the
 full refit's, and 75 % of the refits were of such rivals, all 225 sigma^2 or more above the
 selected motion once refitted in full (a subset refit that falls back onto the selected motion
 is refitted on all the points: on 4 rivals the full refit found a distinct one). At or below
-kScreenPoints points the subset is all of them. */
-constexpr size_t kScreenPoints = 300;
+kRivalSubsetPoints points the subset is all of them. */
 constexpr double kScreenGapPerPoint = 0.3;
 
 /* Each rival motion of the loop (SearchResult::rivals) with at least half the selected model's
@@ -72,7 +71,7 @@ public:
             selectedCost + data.sigma * data.sigma * (kMaxRawCostPerPoint * data.size() + margin_);
         std::vector<int> unweighed;
         const double sigmaSquared = data.sigma * data.sigma;
-        const RefitScreen screen{kScreenPoints, data.threshold * data.threshold,
+        const RefitScreen screen{kRivalSubsetPoints, data.threshold * data.threshold,
                                  selectedCost +
                                      sigmaSquared * (kScreenGapPerPoint * data.size() + margin_)};
         for (Model& rival : refittedRivalMotions(

@@ -57,11 +57,10 @@ motion at the data's noise: on KITTI 01 KLT (13, 15) the rival nearest the truth
 sigma_hat^2 per point more than the estimate as the loop left it, 33 sigma_hat^2 less once
 refitted (doc/vo_front_end.md). A minimal sample's motion costs more there than at the stated
 cap, as every point's cap is lower: those within kMaxRawCostPerPoint sigma_hat^2 per point are
-refitted here. Gate and refit run on an evenly spaced subset of kScreenPoints: on KITTI's pairs
+refitted here. Gate and refit run on an evenly spaced subset of kRivalSubsetPoints: on KITTI's pairs
 the subset's refit takes a quarter of the full one's time and lands near it (on (13, 15) 40
 sigma_hat^2 below the estimate against 33; the chosen rival gets its own final fit). */
 constexpr double kMaxRawCostPerPoint = 2.0;
-constexpr size_t kScreenPoints = 300;
 
 std::vector<Model> unweighedRivalsRefitted(const StageContext& context, const Estimate& estimate,
                                            double capSquared)
@@ -71,7 +70,7 @@ std::vector<Model> unweighedRivalsRefitted(const StageContext& context, const Es
     std::vector<RivalMotions::Rival> unweighed;
     for (int r : estimate.unweighedRivals)
         unweighed.push_back(context.search.rivals[static_cast<size_t>(r)]);
-    const TwoViewData subset = evenlySpacedSubset(context.data, kScreenPoints);
+    const TwoViewData subset = evenlySpacedSubset(context.data, kRivalSubsetPoints);
     const double measured = estimate.model.noiseSigma;
     const double mostRawCost = truncatedCost(subset, estimate.model.F, capSquared) +
                                kMaxRawCostPerPoint * measured * measured * subset.size();

@@ -46,7 +46,7 @@ public:
     }
     bool prepare(const Model& model)
     {
-        if (model.uncertaintyDof == 0)
+        if (!model.uncertainty.isKnown())
             return false;
         uncertainty_.emplace(model, sigma_);
         return true;

@@ -48,7 +48,7 @@ public:
             if (!space_->liftHypothesis(data, sample, model, samplePoints1_, samplePoints2_))
                 continue;
             if (!fitModelOn(data, space_->formOf(model), sample, fitIterations_, model) ||
-                model.uncertaintyDof == 0)
+                !model.uncertainty.isKnown())
                 continue;
             models[kept++] = model;
         }

@@ -27,9 +27,10 @@ public:
     StageOutcome run(const StageContext&, const Estimate& estimate) override
     {
         const Model& model = estimate.model;
-        if (model.uncertaintyDof != MotionTangent::kDof)
+        const MotionUncertainty* uncertainty = model.uncertainty.as<MotionUncertainty>();
+        if (!uncertainty)
             return {};
-        const Eigen::Matrix<double, 5, 5> covariance = model.covariance.topLeftCorner<5, 5>();
+        const Eigen::Matrix<double, 5, 5>& covariance = uncertainty->covariance;
         const struct
         {
             const char* what;

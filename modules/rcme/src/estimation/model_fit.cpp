@@ -252,13 +252,14 @@ enum class Uncertainty
     kFinalEstimate
 };
 
-// sigma^2 (J^T J)^-1 at the problem's state, with the directions it refers to. None when J^T J is
-// ill-conditioned: the points do not determine the model (e.g. a degenerate minimal sample).
-// Unless everyPoint (the final estimate), a large set gives J^T J from its evenly spaced subset,
-// scaled to the whole set: a hypothesis's or a decision's covariance needs no more.
+// sigma^2 (J^T J)^-1 at the problem's state, with the directions it refers to, returned. None
+// when J^T J is ill-conditioned: the points do not determine the model (e.g. a degenerate minimal
+// sample). Unless everyPoint (the final estimate), a large set gives J^T J from its evenly spaced
+// subset, scaled to the whole set: a hypothesis's or a decision's covariance needs no more.
 template <class Problem>
-void setUncertainty(const TwoViewData& data, const std::vector<int>& indices,
-                    const Problem& problem, Model& model, bool everyPoint = true)
+TangentUncertainty<Problem::kDof>*
+setUncertainty(const TwoViewData& data, const std::vector<int>& indices, const Problem& problem,
+               Model& model, bool everyPoint = true)
 {
     constexpr int P = Problem::kDof;
     constexpr double kConditionLimit = 1e-10;
@@ -274,15 +275,15 @@ void setUncertainty(const TwoViewData& data, const std::vector<int>& indices,
                 static_cast<double>(indices.size()) / static_cast<double>(iterated.indices.size());
     }
     const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, P, P>> eig(JtJ);
-    model.uncertaintyDof = 0;
+    model.uncertainty.reset();
     if (!(eig.eigenvalues()(0) > kConditionLimit * eig.eigenvalues()(P - 1)))
-        return;
-    model.uncertaintyDof = P;
-    model.covariance.setZero();
-    model.covariance.template topLeftCorner<P, P>() =
-        data.sigma * data.sigma * eig.eigenvectors() *
-        eig.eigenvalues().cwiseInverse().asDiagonal() * eig.eigenvectors().transpose();
-    problem.derivatives(model.directions);
+        return nullptr;
+    auto& uncertainty = model.uncertainty.template emplace<TangentUncertainty<P>>();
+    uncertainty.covariance = data.sigma * data.sigma * eig.eigenvectors() *
+                             eig.eigenvalues().cwiseInverse().asDiagonal() *
+                             eig.eigenvectors().transpose();
+    problem.derivatives(uncertainty.directions);
+    return &uncertainty;
 }
 
 // The final estimate's noise and covariance. The noise comes from the inliers' Sampson residuals
@@ -297,17 +298,17 @@ template <class Problem>
 void setFinalUncertainty(const TwoViewData& data, const std::vector<int>& indices,
                          const Problem& problem, Model& model)
 {
-    setUncertainty(data, indices, problem, model);
+    TangentUncertainty<Problem::kDof>* uncertainty = setUncertainty(data, indices, problem, model);
     const int dof = static_cast<int>(indices.size()) - Problem::kDof;
     model.noiseSigma =
         dof > 0 ? noiseFromTruncatedResiduals(sampsonCost(data, indices, problem.current()) / dof,
                                               data.threshold)
                 : std::numeric_limits<double>::quiet_NaN();
-    if (model.uncertaintyDof == 0)
+    if (!uncertainty)
         return;
     const double sigma =
         usesEstimatedNoise(data, model.noiseSigma, dof) ? model.noiseSigma : data.sigma;
-    model.covariance *=
+    uncertainty->covariance *=
         sigma * sigma / (data.sigma * data.sigma * truncatedNormalVariance(data.threshold / sigma));
 }
 

@@ -14,9 +14,9 @@ namespace detail {
 
 /** Gold Standard fit of `model` as `form` (ModelForm::kMotion: its motion, which it must have;
 ModelForm::kFundamental: its F, the motion untouched) on the points `indices`, with the
-first-order covariance of the result at the stated sigma (Model::uncertaintyDof and friends; left
-at 0 when the information matrix is ill-conditioned). False when there are too few points to
-fit. */
+first-order covariance of the result at the stated sigma (Model::uncertainty: the motion's or F's,
+as `form`; none when the information matrix is ill-conditioned). False when there are too few
+points to fit. */
 bool fitModelOn(const TwoViewData& data, ModelForm form, const std::vector<int>& indices,
                 int maxIterations, Model& model);
 

@@ -8,8 +8,10 @@
 // score, and what turns an essential matrix into a motion.
 
 #include "framework/two_view_data.hpp"
+#include "geometry/motion_parameterization.hpp"
 
 #include <optional>
+#include <variant>
 
 namespace cv {
 namespace rcme {
@@ -32,6 +34,46 @@ enum class ModelForm
     kMotion
 };
 
+/** The first-order uncertainty of a model in P parameters theta of a tangent space at it: their
+covariance and the directions dF/dtheta_k in pixels, so that a residual's variance can be
+propagated without knowing the parameterization (components/residual_uncertainty.hpp). */
+template <int P> struct TangentUncertainty
+{
+    static constexpr int kDof = P;
+    Eigen::Matrix<double, P, P> covariance = Eigen::Matrix<double, P, P>::Zero();
+    Eigen::Matrix3d directions[P];
+};
+//! A motion's, in MotionTangent's parameters (the rotation increment, then the translation's).
+using MotionUncertainty = TangentUncertainty<MotionTangent::kDof>;
+//! A fundamental matrix's, in FundamentalTangent's parameters.
+using FundamentalUncertainty = TangentUncertainty<FundamentalTangent::kDof>;
+
+/** What is known of a model's uncertainty: nothing (a solver's hypothesis, a fit whose
+information matrix is ill-conditioned, an F replaced by another), its motion's or its F's, each
+at its own size: a covariance is read as what it is the covariance of. */
+class ModelUncertainty
+{
+public:
+    bool isKnown() const { return !std::holds_alternative<std::monostate>(value_); }
+    void reset() { value_ = std::monostate(); }
+    //! Makes it `Tangent`'s (MotionUncertainty or FundamentalUncertainty), zero, and returns it.
+    template <class Tangent> Tangent& emplace() { return value_.template emplace<Tangent>(); }
+    //! It as `Tangent`'s; null when it is none or the other kind.
+    template <class Tangent> const Tangent* as() const { return std::get_if<Tangent>(&value_); }
+    template <class Tangent> Tangent* as() { return std::get_if<Tangent>(&value_); }
+    //! visit(uncertainty) with whichever kind it is; not called when none is known.
+    template <class Visit> void visitKnown(Visit&& visit) const
+    {
+        if (const MotionUncertainty* motion = as<MotionUncertainty>())
+            visit(*motion);
+        else if (const FundamentalUncertainty* fundamental = as<FundamentalUncertainty>())
+            visit(*fundamental);
+    }
+
+private:
+    std::variant<std::monostate, MotionUncertainty, FundamentalUncertainty> value_;
+};
+
 //! One hypothesis (and, after selection, the estimate).
 struct Model
 {
@@ -43,13 +85,9 @@ struct Model
     //! With K, once the decomposition of E is decided: the model is this motion (E, F follow from
     //! it), refined as a motion; without it the model is F, refined as F.
     std::optional<Motion> motion;
-    /** First-order uncertainty of the model: the covariance of its uncertaintyDof parameters
-    theta (0: unknown; 5: the motion's tangent space, see MotionTangent; 7: F's, see
-    FundamentalTangent) and the directions dF/dtheta_k in pixels, so that a residual's variance
-    can be propagated without knowing the parameterization. Top-left block used. */
-    int uncertaintyDof = 0;
-    Eigen::Matrix<double, 7, 7> covariance = Eigen::Matrix<double, 7, 7>::Zero();
-    Eigen::Matrix3d directions[7];
+    //! First-order uncertainty of the model, in the parameters it is refined in (none until a
+    //! fit gives it).
+    ModelUncertainty uncertainty;
     //! Noise sigma estimated from the final inliers' residuals (Refiner::finalize), NaN if none.
     double noiseSigma = std::numeric_limits<double>::quiet_NaN();
 };
