@@ -40,6 +40,37 @@ double bandNoise(const TwoViewData& data, const Eigen::Matrix3d& F)
     return std::sqrt(*middle / chiSquareQuantile(0.5, 1));
 }
 
+/* MAGSAC++'s marginal loss (Barath et al., CVPR 2020: the squared residual's likelihood
+marginalised over a uniform noise scale in (0, sigma_max], 4 DoF: a correspondence's coordinates, as
+MAGSAC++ takes for epipolar geometry), with k sigma_max at the cap and scaled so that a point beyond
+the cap costs the cap squared, as in the truncated cost (so the required gain keeps its meaning). A
+truncation at the cap weighs a point 3-5 noise widths off a motion's lines almost as an inlier; the
+marginal loss weighs points by how tightly they fit: on KITTI 01's (i, i+2) KLT pairs 14-16 and
+15-17 the lateral motion's extra road tracks, near the cap, then no longer outweigh the tighter fit
+of the far tracks to the true motion (doc/vo_front_end.md). With 4 DoF the incomplete gamma
+functions have closed forms: gamma(2, x) = 1 - (1 + x) e^-x, Gamma(1, x) = e^-x. */
+double marginalCost(const TwoViewData& data, const Eigen::Matrix3d& F, double capSquared)
+{
+    static const double kSquared = chiSquareQuantile(0.99, 4);
+    const double sigmaMaxSquared = capSquared / kSquared;
+    const double xCap = kSquared / 2.0;
+    const double expCap = std::exp(-xCap);
+    const double outside = sigmaMaxSquared / 2.0 * (1.0 - (1.0 + xCap) * expCap);
+    const double scale = capSquared / outside;
+    double total = 0.0;
+    for (size_t i = 0; i < data.points1.size(); ++i) {
+        const double d = sampsonDistanceSquared(F, data.points1[i], data.points2[i]);
+        if (!(d < capSquared)) {
+            total += capSquared;
+            continue;
+        }
+        const double x = d / (2.0 * sigmaMaxSquared);
+        const double e = std::exp(-x);
+        total += scale * (sigmaMaxSquared / 2.0 * (1.0 - (1.0 + x) * e) + d / 4.0 * (e - expCap));
+    }
+    return total;
+}
+
 // A rival replaces the estimate only when its cost at the data's noise is lower by this many
 // sigma^2 (as the planar path's ambiguity gap, components/motion_space.cpp): members of a planar
 // scene's family of F differ by noise alone. On KITTI 01's consecutive KLT pairs the rivals that
@@ -86,9 +117,10 @@ translation once the rotation adapts, and at 1.96 px the wrong, nearly lateral m
 more points than the true one. At the noise of the tracks (0.25-0.35 px, from the final fit's
 residuals) those points cost as outliers and the true motion explains the rest better. So each
 rival motion of the loop with half the estimate's support (refittedRivalMotions) is weighed
-against the estimate by MSAC's cost capped at (c sigma_hat / sigma)^2, c the threshold, sigma the
+against the estimate by a cost capped at (c sigma_hat / sigma)^2, c the threshold, sigma the
 stated noise and sigma_hat the estimate's measured one (Model::noiseSigma; only when it is below
-sigma: with noise as stated the cost is the rival decision's, which already chose). The rival of
+sigma: with noise as stated the rival decision, which already chose, weighs them at that cap),
+the marginal cost (marginalCost) rather than MSAC's truncated one. The rival of
 least cost replaces the estimate, with its own final fit, when it is better by kRequiredGain
 sigma_hat^2. It runs on a planar scene's motion too (the homography may have fitted only the far
 points of a deep scene), but there the rival must also fit its own points more tightly
@@ -107,7 +139,7 @@ public:
         const double cap = data.threshold * measured / data.sigma;
         const double capSquared = cap * cap;
         double bestCost =
-            truncatedCost(data, estimate.model.F, capSquared) - kRequiredGain * measured * measured;
+            marginalCost(data, estimate.model.F, capSquared) - kRequiredGain * measured * measured;
         const double noiseBound =
             estimate.planar ? kRivalNoiseShare * bandNoise(data, estimate.model.F) : 0.0;
         // The rival decision's refitted motions when it ran (not on a plane's motion).
@@ -122,7 +154,7 @@ public:
         for (Model& rival : rivals) {
             if (!areDistinctMotions(rival, estimate.model))
                 continue;
-            const double cost = truncatedCost(data, rival.F, capSquared);
+            const double cost = marginalCost(data, rival.F, capSquared);
             if (cost < bestCost && (!estimate.planar || bandNoise(data, rival.F) <= noiseBound)) {
                 bestCost = cost;
                 best = std::move(rival);
