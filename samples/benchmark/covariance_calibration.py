@@ -210,20 +210,21 @@ NEAR_BAND = (2.0, 6.0)
 MIN_LEVERAGE_COMPLEMENT = 0.01
 
 
-def band_outlier_term(pair, report, params, inliers, A_inv, fitted, whole_band=False):
+def band_outlier_term(pair, report, params, inliers, A_inv, sigma, whole_band=False):
     """The library's term for the outliers inside the band that the residuals cannot show: their
     number read off the points just outside the band, the share w / c of them within the noise's
     own band w = min(c, 1.96 sigma), their excess residual variance w^2 / 3 - h(w / sigma)
     sigma^2, their gradients those of the points near the band:
-    A^-1 (sum g^T g over them) A^-1 excess / (NEAR_BAND width) / h(c / sigma)^2. whole_band: w = c
-    (the candidate compared on the tune sets)."""
+    A^-1 (sum g^T g over them) A^-1 excess / (NEAR_BAND width) / h(c / sigma)^2, sigma the
+    reported covariance's noise (the posterior). whole_band: w = c (the candidate compared on the
+    tune sets)."""
     c = _threshold(params)
     d, J = residuals_and_jacobian(np.asarray(report.R), np.asarray(report.t), pair.K,
                                   pair.points1[~inliers], pair.points2[~inliers])
     near = (np.abs(d) > NEAR_BAND[0] * c) & (np.abs(d) <= NEAR_BAND[1] * c)
-    w = c if whole_band else min(c, 1.959963984540054 * fitted)
-    excess = w / c * max(0.0, w * w / 3 - truncated_normal_variance(w / fitted) * fitted ** 2)
-    h = truncated_normal_variance(c / fitted)
+    w = c if whole_band else min(c, 1.959963984540054 * sigma)
+    excess = w / c * max(0.0, w * w / 3 - truncated_normal_variance(w / sigma) * sigma ** 2)
+    h = truncated_normal_variance(c / sigma)
     return A_inv @ (J[near].T @ J[near]) @ A_inv * excess / (NEAR_BAND[1] - NEAR_BAND[0]) / h ** 2
 
 
@@ -258,7 +259,7 @@ def candidates(report, pair, params):
     margin = 2 * math.sqrt(2 / n)
     previous = psd_max(model_based, sandwich, margin) if estimated else model_based
     leverage_only = psd_max(model_based, leverage_sandwich, margin) if estimated else model_based
-    band, whole = (band_outlier_term(pair, report, params, inliers, A_inv, fitted, whole_band)
+    band, whole = (band_outlier_term(pair, report, params, inliers, A_inv, sigma, whole_band)
                    if params.useEstimatedNoise else 0 * A_inv for whole_band in (False, True))
     lo, hi = p1.min(0), p1.max(0) + 1e-9
     cells = np.floor((p1 - lo) / (hi - lo) * CLUSTER_GRID).astype(int) @ [CLUSTER_GRID, 1]

@@ -176,14 +176,17 @@ public:
             // own 95 % band w = min(c, 1.96 sigma), a share w / c of the band's, their residuals
             // spread over it (variance w^2 / 3) where the terms above count them as inliers; one
             // beyond w stands out of the inliers' residuals and the sandwich weighs it by its own.
-            // Their gradients: the points near the band's.
+            // Their gradients: the points near the band's. sigma: the reported covariance's noise.
             static const double noiseBand = normalQuantile(0.975);
-            const double w = std::min(data.threshold, noiseBand * fitted);
+            const double sigma = std::sqrt(posterior);
+            const double w = std::min(data.threshold, noiseBand * sigma);
             const double excess =
                 w / data.threshold *
-                std::max(0.0, w * w / 3.0 - truncatedNormalVariance(w / fitted) * fitted * fitted);
+                std::max(0.0, w * w / 3.0 - truncatedNormalVariance(w / sigma) * posterior);
+            const double hReported = truncatedNormalVariance(data.threshold / sigma);
             covariance += scores.informationInverse * scores.nearOutliers *
-                          scores.informationInverse * (excess / (kNearTo - kNearFrom) / (h * h));
+                          scores.informationInverse *
+                          (excess / (kNearTo - kNearFrom) / (hReported * hReported));
         }
         revised.covariance.topLeftCorner<P, P>() = covariance;
         return outcome;
