@@ -198,7 +198,34 @@ def _fit_noise(report, params, inliers):
 
 REPORTED = "reported (Report::covariance)"
 MODEL_BASED = "model-based sigma^2 / h (J^T J)^-1"
-STEP = "before: the stated sigma below 35 inliers"
+PREVIOUS = "before: 83c2b8b (plain sandwich, no outliers in the band)"
+LEVERAGE_ONLY = "leverage-corrected sandwich alone, no outliers in the band"
+BAND_ONLY = "outliers in the band alone, plain sandwich"
+WHOLE_BAND = "leverage-corrected sandwich + outliers in the whole band (w = c)"
+# The library's band-outlier count: the points outside the band with Sampson distances between
+# NEAR_BAND[0] and NEAR_BAND[1] band widths, 1 / (NEAR_BAND[1] - NEAR_BAND[0]) of them
+# (components/residual_covariance.cpp's kNearFrom, kNearTo).
+NEAR_BAND = (2.0, 6.0)
+# Leverages above 1 - this are taken as it (the library's kMinLeverageComplement).
+MIN_LEVERAGE_COMPLEMENT = 0.01
+
+
+def band_outlier_term(pair, report, params, inliers, A_inv, sigma, whole_band=False):
+    """The library's term for the outliers inside the band that the residuals cannot show: their
+    number read off the points just outside the band, the share w / c of them within the noise's
+    own band w = min(c, 1.96 sigma), their excess residual variance w^2 / 3 - h(w / sigma)
+    sigma^2, their gradients those of the points near the band:
+    A^-1 (sum g^T g over them) A^-1 excess / (NEAR_BAND width) / h(c / sigma)^2, sigma the
+    reported covariance's noise (the posterior). whole_band: w = c (the candidate compared on the
+    tune sets)."""
+    c = _threshold(params)
+    d, J = residuals_and_jacobian(np.asarray(report.R), np.asarray(report.t), pair.K,
+                                  pair.points1[~inliers], pair.points2[~inliers])
+    near = (np.abs(d) > NEAR_BAND[0] * c) & (np.abs(d) <= NEAR_BAND[1] * c)
+    w = c if whole_band else min(c, 1.959963984540054 * sigma)
+    excess = w / c * max(0.0, w * w / 3 - truncated_normal_variance(w / sigma) * sigma ** 2)
+    h = truncated_normal_variance(c / sigma)
+    return A_inv @ (J[near].T @ J[near]) @ A_inv * excess / (NEAR_BAND[1] - NEAR_BAND[0]) / h ** 2
 
 
 def candidates(report, pair, params):
@@ -208,8 +235,9 @@ def candidates(report, pair, params):
     the same with the scores summed over spatial cells (errors correlated within a cell), the
     larger of the model-based one and the sandwich without the library's margin, and the larger
     of the model-based one and a spatial-kernel sandwich (scores of nearby inliers correlated)
-    with the library's margin; and the reported one with an error floor that does not shrink with
-    the number of inliers."""
+    with the library's margin; 83c2b8b's reported one (the plain sandwich, no term for the
+    outliers in the band) and each of the two terms issue 36d added alone; and the reported one
+    with an error floor that does not shrink with the number of inliers."""
     inliers = np.asarray(report.mask).ravel().astype(bool)
     p1, p2 = pair.points1[inliers], pair.points2[inliers]
     d, J = residuals_and_jacobian(np.asarray(report.R), np.asarray(report.t), pair.K, p1, p2)
@@ -219,14 +247,20 @@ def candidates(report, pair, params):
     model_based = sigma * sigma / h * A_inv
     fitted = _fit_noise(report, params, n)
     h_fitted = truncated_normal_variance(_threshold(params) / fitted)
+    estimated = (params.useEstimatedNoise and n - 5 >= MIN_NOISE_DOF and
+                 np.isfinite(report.noiseSigma))
     scores = J * d[:, None]
     # the sandwich's truncation factor is the estimated noise's (the library's, where it is used)
     h = h_fitted if np.isfinite(report.noiseSigma) and fitted == report.noiseSigma else h
     sandwich = A_inv @ (scores.T @ scores) @ A_inv * n / (n - 5) / h ** 2
+    leverage = np.einsum("ij,jk,ik->i", J, A_inv, J)
+    shrunk = scores / np.maximum(1 - leverage, MIN_LEVERAGE_COMPLEMENT)[:, None]
+    leverage_sandwich = A_inv @ (shrunk.T @ shrunk) @ A_inv * n / (n - 5) / h ** 2
     margin = 2 * math.sqrt(2 / n)
-    step = fitted * fitted / h_fitted * A_inv
-    if params.useEstimatedNoise and n - 5 >= MIN_NOISE_DOF and np.isfinite(report.noiseSigma):
-        step = psd_max(step, sandwich, margin)
+    previous = psd_max(model_based, sandwich, margin) if estimated else model_based
+    leverage_only = psd_max(model_based, leverage_sandwich, margin) if estimated else model_based
+    band, whole = (band_outlier_term(pair, report, params, inliers, A_inv, sigma, whole_band)
+                   if params.useEstimatedNoise else 0 * A_inv for whole_band in (False, True))
     lo, hi = p1.min(0), p1.max(0) + 1e-9
     cells = np.floor((p1 - lo) / (hi - lo) * CLUSTER_GRID).astype(int) @ [CLUSTER_GRID, 1]
     sums = np.array([scores[cells == c].sum(0) for c in np.unique(cells)])
@@ -239,7 +273,9 @@ def candidates(report, pair, params):
             "sandwich": sandwich,
             "clustered sandwich (%dx%d cells)" % (CLUSTER_GRID, CLUSTER_GRID): clustered,
             "max(model-based, sandwich), no margin": psd_max(model_based, sandwich),
-            SPATIAL: psd_max(model_based, spatial, margin), STEP: step,
+            SPATIAL: psd_max(model_based, spatial, margin), PREVIOUS: previous,
+            LEVERAGE_ONLY: leverage_only, BAND_ONLY: previous + band,
+            WHOLE_BAND: leverage_only + whole,
             FLOOR: np.asarray(report.covariance, np.float64) +
             EPIPOLAR_FLOOR_PX ** 2 * n * A_inv}
 
@@ -687,7 +723,8 @@ def run_synthetic(scenes_per_config, stated_sigma_factor):
                               GROSS_ROTATION_DEG, GROSS_TRANSLATION_DEG)]
     groups = []
     for estimated, mode in NOISE_MODES:
-        for name in ((REPORTED, STEP, MODEL_BASED, "sandwich", SPATIAL, FLOOR) if estimated else
+        for name in ((REPORTED, PREVIOUS, LEVERAGE_ONLY, BAND_ONLY, WHOLE_BAND, MODEL_BASED,
+                      "sandwich", SPATIAL, FLOOR) if estimated else
                      (REPORTED,)):
             for scene, outliers in (("all", "all"), ("generic", "no outliers"),
                                     ("generic", "30 % outliers"), ("corridor", "no outliers"),
@@ -797,11 +834,11 @@ def real_report(args, out_dir):
     estimated_loops = [r for r in loops if r["mode"] == NOISE_MODES[0][1]]
     smaller = [r for r in loop_rows(sequences, _SubsampledMatcher(matcher), args.sigma,
                                     args.max_loops)
-               if r["mode"] == NOISE_MODES[0][1] and r["candidate"] in (REPORTED, STEP, FLOOR)]
+               if r["mode"] == NOISE_MODES[0][1] and r["candidate"] in (REPORTED, PREVIOUS, FLOOR)]
     share_table = [[d, split_of(d), share, name, which, str(len(subset))] + loop_stats(subset)
                    for d in sorted({r["dataset"] for r in default_loops},
                                    key=lambda d: (split_of(d), d))
-                   for name in (REPORTED, STEP, FLOOR)
+                   for name in (REPORTED, PREVIOUS, FLOOR)
                    for share, rows_of in (("1/4", estimated_loops), ("1/8", smaller))
                    for which, keep in (("all", lambda r: True),
                                        ("35 inliers or more in all three pairs",
@@ -813,11 +850,10 @@ def real_report(args, out_dir):
               "which does not shrink with the number of matches looks more over-confident the "
               "more matches it is computed from. The reported covariance's noise is the posterior "
               "of the estimate and the stated sigma (a prior worth %g residual degrees of "
-              "freedom); before, a pair with fewer than 35 inliers took the stated sigma (1 px, "
-              "about 3x the estimated noise on these sequences) and its loops read conservative "
-              "(%s). From 35 inliers on the covariance is also raised to the sandwich, so the "
-              "loops whose three pairs all have them are shown apart. The floor candidate: "
-              "%s.\n" % (STATED_NOISE_DOF, STEP, FLOOR),
+              "freedom). From 35 inliers on the covariance is also raised to the "
+              "(leverage-corrected) sandwich, so the loops whose three pairs all have them are "
+              "shown apart. Before: %s. The floor candidate: %s.\n" % (STATED_NOISE_DOF,
+                                                                      PREVIOUS, FLOOR),
               _markdown(["sequence", "split", "share of the matches", "covariance", "loops kept",
                          "loops"] + LOOP_HEADER, share_table)]
     gt = gt_error(default, default_loops, slice(0, 3), "nees3", 3)
