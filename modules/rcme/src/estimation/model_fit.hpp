@@ -27,6 +27,15 @@ Report::covariance). */
 bool fitFinalModelOn(const TwoViewData& data, ModelForm form, const std::vector<int>& indices,
                      int maxIterations, Model& model, std::vector<int>& confirmed);
 
+/** The robust polish of a final estimate with a motion: the motion refitted on the points
+`indices` with a Cauchy loss of scale `lossScale` (pixels) on their Sampson distances, so that
+the few widest residuals among the inliers weigh less than in least squares; its covariance is
+the final estimate's at the polished motion (fitFinalModelOn) times the loss's inefficiency on
+these residuals (an M-estimator's sandwich). False (model untouched) without a camera matrix or a
+motion, on fewer than 10 points, or when the polished motion's covariance is not defined. */
+bool polishFinalMotionOn(const TwoViewData& data, const std::vector<int>& indices, double lossScale,
+                         int maxIterations, Model& model);
+
 /** Whether the final estimate's covariance is computed with the noise estimated from its
 residuals (`noiseSigma`, Model::noiseSigma) rather than the stated sigma: Params::useEstimatedNoise
 and at least 30 residual degrees of freedom (inliers minus the model's). */
