@@ -27,13 +27,7 @@ using namespace cv::rcme::detail;
 resemble (most within a fraction of a pixel, some a pixel off). */
 SyntheticScene heavyTailedScene(int seed)
 {
-    SceneParams sp;
-    sp.kind = SCENE_GENERIC;
-    sp.sigma = 0.0;
-    sp.numPoints = 60;
-    sp.inlierRatio = 0.75;
-    sp.seed = seed;
-    SyntheticScene scene = generateScene(sp);
+    SyntheticScene scene = testScene(SCENE_GENERIC, seed, 0.75, 0.0, 60);
     cv::RNG rng(static_cast<uint64>(1000 + seed));
     for (int i = 0; i < scene.points2.rows; ++i) {
         if (!scene.inlierMask.at<uchar>(i))
@@ -43,6 +37,21 @@ SyntheticScene heavyTailedScene(int seed)
         scene.points2.at<double>(i, 1) += rng.gaussian(sigma);
     }
     return scene;
+}
+
+// The final fit's least squares on every point of `data`, from the true motion.
+Model leastSquaresFit(const SyntheticScene& scene, const TwoViewData& data,
+                      std::vector<int>& indices)
+{
+    indices.resize(data.points1.size());
+    for (size_t i = 0; i < indices.size(); ++i)
+        indices[i] = static_cast<int>(i);
+    Model model;
+    cv2eigen(scene.R, model.motion.emplace().R);
+    cv2eigen(scene.t, model.motion->t);
+    std::vector<int> confirmed;
+    EXPECT_TRUE(fitFinalModelOn(data, ModelForm::kMotion, indices, 20, model, confirmed));
+    return model;
 }
 
 double motionError(const Eigen::Matrix3d& R, const Eigen::Vector3d& t, const SyntheticScene& scene)
@@ -103,38 +112,22 @@ TEST(Rcme_FinalPolish, polishes_heavy_tails_and_declines_on_gaussian_noise)
     for (int seed = 0; seed < kScenes; ++seed) {
         const SyntheticScene scene = heavyTailedScene(seed);
         const TwoViewData data = sceneData(scene, /*calibrated=*/true);
-        std::vector<int> indices(data.points1.size()), confirmed;
-        for (size_t i = 0; i < indices.size(); ++i)
-            indices[i] = static_cast<int>(i);
-        Model model;
-        cv2eigen(scene.R, model.motion.emplace().R);
-        cv2eigen(scene.t, model.motion->t);
-        ASSERT_TRUE(fitFinalModelOn(data, ModelForm::kMotion, indices, 20, model, confirmed));
+        std::vector<int> indices;
+        const Model model = leastSquaresFit(scene, data, indices);
         leastSquaresError += motionError(model.motion->R, model.motion->t, scene);
         Model polished = model;
-        if (polishFinalMotionOn(data, indices, 0.25 * data.threshold, 20, polished)) {
+        if (polishFinalMotionOn(data, indices, 0.25 * data.threshold, 3, polished)) {
             EXPECT_EQ(polished.uncertaintyDof, 5);
             EXPECT_TRUE(polished.F.allFinite());
         }
         polishedError += motionError(polished.motion->R, polished.motion->t, scene);
 
-        SceneParams gaussian;
-        gaussian.kind = SCENE_GENERIC;
-        gaussian.sigma = 1.0;
-        gaussian.numPoints = 200;
-        gaussian.inlierRatio = 1.0;
-        gaussian.seed = seed;
-        const SyntheticScene plain = generateScene(gaussian);
+        const SyntheticScene plain = testScene(SCENE_GENERIC, seed, 1.0, 1.0, 200);
         const TwoViewData plainData = sceneData(plain, /*calibrated=*/true);
-        std::vector<int> all(plainData.points1.size());
-        for (size_t i = 0; i < all.size(); ++i)
-            all[i] = static_cast<int>(i);
-        Model fitted;
-        cv2eigen(plain.R, fitted.motion.emplace().R);
-        cv2eigen(plain.t, fitted.motion->t);
-        ASSERT_TRUE(fitFinalModelOn(plainData, ModelForm::kMotion, all, 20, fitted, confirmed));
+        std::vector<int> all;
+        const Model fitted = leastSquaresFit(plain, plainData, all);
         Model untouched = fitted;
-        if (!polishFinalMotionOn(plainData, all, 0.25 * plainData.threshold, 20, untouched)) {
+        if (!polishFinalMotionOn(plainData, all, 0.25 * plainData.threshold, 3, untouched)) {
             ++declinedOnGaussian;
             EXPECT_EQ(untouched.motion->R, fitted.motion->R);
         }

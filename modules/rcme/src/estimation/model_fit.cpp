@@ -237,13 +237,12 @@ double levenbergMarquardt(const TwoViewData& data, const std::vector<int>& inlie
 // final estimate then takes a few more iterations on every point.
 constexpr int kFullSetIterations = 3;
 
-template <class Problem, class Loss = SquaredLoss>
+template <class Problem>
 void finishOnEveryPoint(const TwoViewData& data, const std::vector<int>& inliers, Problem& problem,
-                        int maxIterations, const Loss& loss = Loss())
+                        int maxIterations)
 {
     if (inliers.size() > kMaxIteratedPoints)
-        levenbergMarquardt(data, inliers, problem, std::min(maxIterations, kFullSetIterations),
-                           loss);
+        levenbergMarquardt(data, inliers, problem, std::min(maxIterations, kFullSetIterations));
 }
 
 // The evenly spaced subset a large fit iterates on, inliers[0], inliers[stride], ..., copied next
@@ -270,14 +269,14 @@ IteratedPoints iteratedPoints(const TwoViewData& data, const std::vector<int>& i
     return {gathered, positions};
 }
 
-template <class Problem, class Loss = SquaredLoss>
+template <class Problem>
 void leastSquares(const TwoViewData& data, const std::vector<int>& inliers, Problem& problem,
-                  int maxIterations, bool finish, const Loss& loss = Loss())
+                  int maxIterations, bool finish)
 {
     const IteratedPoints iterated = iteratedPoints(data, inliers);
-    levenbergMarquardt(iterated.data, iterated.indices, problem, maxIterations, loss);
+    levenbergMarquardt(iterated.data, iterated.indices, problem, maxIterations);
     if (finish)
-        finishOnEveryPoint(data, inliers, problem, maxIterations, loss);
+        finishOnEveryPoint(data, inliers, problem, maxIterations);
 }
 
 // Which covariance a fit gets: the stated sigma's sigma^2 (J^T J)^-1 (a hypothesis, a minimal
@@ -508,13 +507,15 @@ bool polishFinalMotionOn(const TwoViewData& data, const std::vector<int>& indice
                          int maxIterations, Model& model)
 {
     constexpr int P = MotionProblem::kDof;
+    // A large set is left as least squares fitted it: what a loss of the residuals' tails gains
+    // shrinks with the number of inliers, and every iteration on them costs (10^6 matches).
     if (!data.calibrated || !model.motion || indices.size() < 2 * static_cast<size_t>(P) ||
-        !(lossScale > 0))
+        indices.size() > kMaxIteratedPoints || !(lossScale > 0))
         return false;
     const CauchyLoss loss{lossScale * lossScale};
     Motion& motion = *model.motion;
     MotionProblem problem{data.Kinv, motion.R, motion.t, motion.R, motion.t};
-    leastSquares(data, indices, problem, maxIterations, true, loss);
+    levenbergMarquardt(data, indices, problem, maxIterations, loss);
     const double inefficiency = cauchyInefficiency(data, indices, problem.current(), loss);
     if (!(inefficiency < 1.0))
         return false;
