@@ -453,10 +453,11 @@ bool fitModel(const TwoViewData& data, ModelForm form, const std::vector<int>& i
 
 /* How much more the Cauchy estimate varies than least squares on the same residuals d_i (Huber's
 sandwich of an M-estimator, its scalar form): n^2 sum psi^2 / ((sum psi')^2 sum d^2), psi(d) =
-d / (1 + d^2 / s^2) the loss's influence. About 1.5 for Gaussian noise at s = sigma inside a band
-of 1.96 sigma, where the loss gives up some efficiency; below 1 where the residuals have wider
-tails than a Gaussian's, where it gains. NaN when the loss's curvature is not positive on the
-points (most of them beyond s: the polish does not apply). */
+d / (1 + d^2 / s^2) the loss's influence. For Gaussian noise inside a band of 1.96 sigma it is
+1.5 at s = sigma and 2.3 at s = sigma / 2 (the polish's scale at a threshold of 1.96 sigma): the
+loss gives up precision; it falls below 1 where the residuals' tails are wider than a Gaussian's.
+NaN when the loss's curvature is not positive on the points (most of them beyond s: the polish does
+not apply). */
 double cauchyInefficiency(const TwoViewData& data, const std::vector<int>& indices,
                           const Eigen::Matrix3d& F, const CauchyLoss& loss)
 {
