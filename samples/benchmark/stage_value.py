@@ -40,7 +40,8 @@ VARIANTS = [
     ("default", "", {}),
     ("USAC's sample count", "the loop's extra samples: cleanSampleSuccessRate 1 (default 0.3)",
      {"cleanSampleSuccessRate": 1.0}),
-    ("no local optimisation", "LO and its inner sampling: localOptimization false",
+    ("no local optimisation", "LO, its inner sampling and the final polish: localOptimization "
+     "false",
      {"localOptimization": False}),
     ("no refinement", "refinement, final fit, covariance, uncertainty bound: refine false",
      {"refine": False}),

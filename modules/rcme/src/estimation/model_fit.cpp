@@ -115,9 +115,26 @@ struct CoordinateBlock
     }
 };
 
-// The sum of the squared Sampson distances, in the inliers' order.
+// Least squares: every point weighs alike.
+struct SquaredLoss
+{
+    static double cost(double squared) { return squared; }
+};
+
+/* The Cauchy loss s^2 log(1 + d^2 / s^2) of the robust polish: a point well inside the noise
+weighs as in least squares, one at a few s counts less and less (weight 1 / (1 + d^2 / s^2)),
+so a few wide residuals among the inliers do not pull the fit. */
+struct CauchyLoss
+{
+    double scale2;
+    double cost(double squared) const { return scale2 * std::log1p(squared / scale2); }
+    double weight(double squared) const { return 1.0 / (1.0 + squared / scale2); }
+};
+
+// The sum of the loss of the Sampson distances, in the inliers' order.
+template <class Loss = SquaredLoss>
 double sampsonCost(const TwoViewData& data, const std::vector<int>& inliers,
-                   const Eigen::Matrix3d& F)
+                   const Eigen::Matrix3d& F, const Loss& loss = Loss())
 {
     CoordinateBlock block;
     double squared[kSampsonBlock];
@@ -126,20 +143,36 @@ double sampsonCost(const TwoViewData& data, const std::vector<int>& inliers,
         const int count = block.gather(data, inliers, start);
         sampsonDistancesSquaredOfBlock(F, block.x1, block.y1, block.x2, block.y2, count, squared);
         for (int j = 0; j < count; ++j)
-            cost += squared[j];
+            cost += loss.cost(squared[j]);
     }
     return cost;
+}
+
+// Scales each point's distance and gradient by the square root of its weight: the normal
+// equations then sum w g^T g and w g^T d (iteratively reweighted least squares). Least squares
+// leaves them as they are.
+inline void weighBlock(const SquaredLoss&, int, int, double*, double*) {}
+
+inline void weighBlock(const CauchyLoss& loss, int parameters, int count, double* distance,
+                       double* gradients)
+{
+    for (int j = 0; j < count; ++j) {
+        const double root = std::sqrt(loss.weight(distance[j] * distance[j]));
+        distance[j] *= root;
+        for (int k = 0; k < parameters; ++k)
+            gradients[k * kSampsonBlock + j] *= root;
+    }
 }
 
 // Gauss-Newton system J^T J, J^T r of the Sampson distances at the problem's current state. The
 // gradients come a block of points at a time (sampsonGradientsOfBlock, vectorized); the sums run
 // over the points in order (accumulateNormalEquations), each entry adding g_a g_b as a full outer
 // product would: the same bits as sampsonDistanceAndGradient's per point.
-template <class Problem>
+template <class Problem, class Loss = SquaredLoss>
 void normalEquations(const TwoViewData& data, const std::vector<int>& inliers,
                      const Problem& problem,
                      Eigen::Matrix<double, Problem::kDof, Problem::kDof>& JtJ,
-                     Eigen::Matrix<double, Problem::kDof, 1>& Jtr)
+                     Eigen::Matrix<double, Problem::kDof, 1>& Jtr, const Loss& loss = Loss())
 {
     constexpr int P = Problem::kDof;
     constexpr int B = kSampsonBlock;
@@ -154,6 +187,7 @@ void normalEquations(const TwoViewData& data, const std::vector<int>& inliers,
         const int count = block.gather(data, inliers, start);
         sampsonGradientsOfBlock(F, dF, P, block.x1, block.y1, block.x2, block.y2, count, distance,
                                 gradients, valid);
+        weighBlock(loss, P, count, distance, gradients);
         accumulateNormalEquations(P, distance, gradients, valid, count, &normal[0][0]);
     }
     for (int a = 0; a < P; ++a) {
@@ -163,18 +197,19 @@ void normalEquations(const TwoViewData& data, const std::vector<int>& inliers,
     }
 }
 
-// Levenberg-Marquardt with multiplicative damping on the diagonal. Returns the final cost.
-template <class Problem>
+// Levenberg-Marquardt with multiplicative damping on the diagonal, on the loss's reweighted
+// system. Returns the final cost.
+template <class Problem, class Loss = SquaredLoss>
 double levenbergMarquardt(const TwoViewData& data, const std::vector<int>& inliers,
-                          Problem& problem, int maxIterations)
+                          Problem& problem, int maxIterations, const Loss& loss = Loss())
 {
     constexpr int P = Problem::kDof;
-    double cost = sampsonCost(data, inliers, problem.current());
+    double cost = sampsonCost(data, inliers, problem.current(), loss);
     double damping = 1e-3;
     Eigen::Matrix<double, P, P> JtJ;
     Eigen::Matrix<double, P, 1> Jtr;
     for (int iteration = 0; iteration < maxIterations; ++iteration) {
-        normalEquations(data, inliers, problem, JtJ, Jtr);
+        normalEquations(data, inliers, problem, JtJ, Jtr, loss);
         bool improved = false;
         while (damping < 1e12) {
             Eigen::Matrix<double, P, P> A = JtJ;
@@ -182,7 +217,7 @@ double levenbergMarquardt(const TwoViewData& data, const std::vector<int>& inlie
             const Eigen::Matrix<double, P, 1> delta = A.ldlt().solve(-Jtr);
             if (!delta.allFinite())
                 break;
-            const double candidateCost = sampsonCost(data, inliers, problem.propose(delta));
+            const double candidateCost = sampsonCost(data, inliers, problem.propose(delta), loss);
             if (candidateCost < cost) {
                 problem.accept();
                 improved = cost - candidateCost > 1e-12 * cost;
@@ -417,6 +452,35 @@ bool fitModel(const TwoViewData& data, ModelForm form, const std::vector<int>& i
     return model.F.allFinite();
 }
 
+/* How much more the Cauchy estimate varies than least squares on the same residuals d_i (Huber's
+sandwich of an M-estimator, its scalar form): n^2 sum psi^2 / ((sum psi')^2 sum d^2), psi(d) =
+d / (1 + d^2 / s^2) the loss's influence. For Gaussian noise inside a band of 1.96 sigma it is
+1.5 at s = sigma and 2.3 at s = sigma / 2 (the polish's scale at a threshold of 1.96 sigma): the
+loss gives up precision; it falls below 1 where the residuals' tails are wider than a Gaussian's.
+NaN when the loss's curvature is not positive on the points (most of them beyond s: the polish does
+not apply). */
+double cauchyInefficiency(const TwoViewData& data, const std::vector<int>& indices,
+                          const Eigen::Matrix3d& F, const CauchyLoss& loss)
+{
+    CoordinateBlock block;
+    double squared[kSampsonBlock];
+    double influence2 = 0, curvature = 0, residual2 = 0;
+    for (size_t start = 0; start < indices.size(); start += kSampsonBlock) {
+        const int count = block.gather(data, indices, start);
+        sampsonDistancesSquaredOfBlock(F, block.x1, block.y1, block.x2, block.y2, count, squared);
+        for (int j = 0; j < count; ++j) {
+            const double w = loss.weight(squared[j]);
+            influence2 += squared[j] * w * w;
+            curvature += (1.0 - squared[j] / loss.scale2) * w * w;
+            residual2 += squared[j];
+        }
+    }
+    const double n = static_cast<double>(indices.size());
+    if (!(curvature > 0 && residual2 > 0))
+        return std::numeric_limits<double>::quiet_NaN();
+    return n * n * influence2 / (curvature * curvature * residual2);
+}
+
 } // namespace
 
 // Fewest residual degrees of freedom (inliers minus the model's) for the estimated noise to
@@ -439,6 +503,36 @@ bool fitFinalModelOn(const TwoViewData& data, ModelForm form, const std::vector<
 {
     return fitModel(data, form, indices, maxIterations, Uncertainty::kFinalEstimate, model,
                     &confirmed);
+}
+
+bool polishFinalMotionOn(const TwoViewData& data, const std::vector<int>& indices, double lossScale,
+                         int maxIterations, Model& model)
+{
+    constexpr int P = MotionProblem::kDof;
+    // A large set is left as least squares fitted it: what a loss of the residuals' tails gains
+    // shrinks with the number of inliers, and every iteration on them costs (10^6 matches).
+    if (!data.calibrated || !model.motion || indices.size() < 2 * static_cast<size_t>(P) ||
+        indices.size() > kMaxIteratedPoints || !(lossScale > 0))
+        return false;
+    const CauchyLoss loss{lossScale * lossScale};
+    Motion& motion = *model.motion;
+    MotionProblem problem{data.Kinv, motion.R, motion.t, motion.R, motion.t};
+    levenbergMarquardt(data, indices, problem, maxIterations, loss);
+    const double inefficiency = cauchyInefficiency(data, indices, problem.current(), loss);
+    if (!(inefficiency < 1.0))
+        return false;
+    Model polished = model;
+    setFinalUncertainty(data, indices, problem, polished);
+    if (polished.uncertaintyDof == 0)
+        return false;
+    polished.motion->R = problem.R;
+    polished.motion->t = problem.t;
+    polished.E = skew(problem.t) * problem.R;
+    polished.F = fundamentalFromEssential(polished.E, data.Kinv);
+    if (!polished.F.allFinite())
+        return false;
+    model = polished;
+    return true;
 }
 
 } // namespace detail

@@ -27,6 +27,17 @@ Report::covariance). */
 bool fitFinalModelOn(const TwoViewData& data, ModelForm form, const std::vector<int>& indices,
                      int maxIterations, Model& model, std::vector<int>& confirmed);
 
+/** The robust polish of a final estimate with a motion: the motion refitted on the points
+`indices` with a Cauchy loss of scale `lossScale` (pixels) on their Sampson distances, so that
+the few widest residuals among the inliers weigh less than in least squares; its covariance is
+the final estimate's at the polished motion (fitFinalModelOn's formula). False (model
+untouched) without a camera matrix or a motion, on fewer than 10 or more than kMaxIteratedPoints
+points (two_view_data.hpp), when the loss is less precise than least squares on these residuals
+(an M-estimator's sandwich, its inefficiency >= 1: Gaussian noise), or when the polished
+motion's covariance is not defined. */
+bool polishFinalMotionOn(const TwoViewData& data, const std::vector<int>& indices, double lossScale,
+                         int maxIterations, Model& model);
+
 /** Whether the final estimate's covariance is computed with the noise estimated from its
 residuals (`noiseSigma`, Model::noiseSigma) rather than the stated sigma: Params::useEstimatedNoise
 and at least 30 residual degrees of freedom (inliers minus the model's). */

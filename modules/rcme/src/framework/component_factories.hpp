@@ -92,6 +92,9 @@ std::unique_ptr<EstimationStage> createRivalSelectionAtDataNoise();
 /** Calibrated data: the estimate's support against chance over the motions of maxIterations
 samples, and with `testsTranslation` (Params::maxTranslationStdDeg > 0) its translation's. */
 std::unique_ptr<EstimationStage> createChanceSupportTest(int maxIterations, bool testsTranslation);
+/** Params::localOptimization with Params::refine, calibrated data: the returned motion refitted
+on its inliers with a robust loss after the decisions, on success (final_polish.cpp). */
+std::unique_ptr<EstimationStage> createFinalPolish(int maxIterations);
 /** Params::useEstimatedNoise, calibrated data: the reported covariance raised to the final
 inliers' residual-based (sandwich) one where it exceeds it (residual_covariance.cpp). */
 std::unique_ptr<EstimationStage> createResidualCovariance();

@@ -180,6 +180,8 @@ EstimatorComponents createEstimator(const Params& params, const TwoViewData& dat
     if (data.calibrated && (params.maxRotationStdDeg > 0 || params.maxTranslationStdDeg > 0))
         c.stages.push_back(
             createUncertaintyBound(params.maxRotationStdDeg, params.maxTranslationStdDeg));
+    if (data.calibrated && params.localOptimization && c.refiner)
+        c.stages.push_back(createFinalPolish(params.refineIterations));
     if (data.calibrated && params.useEstimatedNoise)
         c.stages.push_back(createResidualCovariance());
     c.stages.push_back(createFinalDecision());

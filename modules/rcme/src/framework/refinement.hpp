@@ -4,9 +4,10 @@
 #ifndef OPENCV_RCME_FRAMEWORK_REFINEMENT_HPP
 #define OPENCV_RCME_FRAMEWORK_REFINEMENT_HPP
 
-// Box 4 of Fig. 1, the one place where an estimate is refined after the loop: the rounds of
-// refinement and classification of the selected model, and the final fit. The fits themselves
-// are the method's Refiner; what is kept, the Scorer's.
+// Box 4 of Fig. 1, the one place where an estimate is refined before the decisions: the rounds
+// of refinement and classification of the selected model, and the final fit. The fits themselves
+// are the method's Refiner; what is kept, the Scorer's. (The final polish, after the decisions,
+// is a stage of its own: components/final_polish.cpp.)
 
 #include "framework/components.hpp"
 

@@ -221,8 +221,12 @@ struct CV_EXPORTS_W_SIMPLE Params
     samples, adaptive or not), minimal samples drawn from the best candidate's inliers
     (LO-RANSAC's inner sampling; 100 per round, up to 4 rounds while they improve it) compete
     too: a wrong motion's inliers are mostly true ones, so they find the true motion that the
-    loop's few clean samples missed (doc/results.md). Other loops are not changed. Default true
-    (the paper's experiments: false). */
+    loop's few clean samples missed (doc/results.md). Other loops are not changed. With a camera
+    matrix and refine, the returned motion is then polished once its status is decided: refitted
+    on its inliers with a Cauchy loss (scale a quarter of threshold), as PoseLib's last step,
+    when its residuals say that is more precise than least squares (their tails are wider than a
+    Gaussian's, as real matches' are); no status depends on it (doc/results.md, "The final
+    polish"). Default true (the paper's experiments: false). */
     CV_PROP_RW bool localOptimization;
     /** After the loop, compare the final inliers' fit by F with their fit by a homography
     (Torr's GRIC @cite Torr1998GRIC). When the homography explains them at least as well (a planar
@@ -321,9 +325,10 @@ struct CV_EXPORTS_W_SIMPLE Report
     Standard fit on the points inside the band of that fit itself (the band is taken again after
     each fit, up to four times, until it no longer changes), in front of both cameras, and
     confirmed by the others (leverage <= 1/2, studentized residual inside the band; the mask marks
-    them): sigma^2 / h(c / sigma) (J^T J)^-1,
-    with sigma the noise chosen by Params::useEstimatedNoise, c the inlier threshold and h(k) =
-    E[z^2 | |z| < k] (the fit sees only residuals inside the band; 1 / h = 1.32 at 1.96 sigma).
+    them): sigma^2 / h(c / sigma) (J^T J)^-1, at the returned motion (after the final polish
+    of Params::localOptimization, when it applies), with sigma the noise chosen by
+    Params::useEstimatedNoise, c the inlier threshold and h(k) = E[z^2 | |z| < k] (the fit sees
+    only residuals inside the band; 1 / h = 1.32 at 1.96 sigma).
     With the estimated noise, sigma^2 is then the posterior (4 s0^2 + nu s^2) / (nu + 2): the
     estimate s (noiseSigma, nu = inliers - 5 residual degrees of freedom) shrunk toward the stated
     sigma s0, a prior worth 4 degrees of freedom, so that it moves from s0 to s with the number
