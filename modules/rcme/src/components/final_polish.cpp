@@ -41,7 +41,7 @@ public:
     StageOutcome run(const StageContext& context, const Estimate& estimate) override
     {
         const TwoViewData& data = context.data;
-        if (!estimate.model.motion || estimate.model.uncertaintyDof != MotionTangent::kDof)
+        if (!estimate.model.motion || !estimate.model.uncertainty.as<MotionUncertainty>())
             return {};
         std::vector<int> indices;
         maskIndices(estimate.mask, indices);

@@ -523,7 +523,7 @@ bool polishFinalMotionOn(const TwoViewData& data, const std::vector<int>& indice
         return false;
     Model polished = model;
     setFinalUncertainty(data, indices, problem, polished);
-    if (polished.uncertaintyDof == 0)
+    if (!polished.uncertainty.as<MotionUncertainty>())
         return false;
     polished.motion->R = problem.R;
     polished.motion->t = problem.t;
