@@ -138,6 +138,29 @@ TEST(Rcme_FinalPolish, polishes_heavy_tails_and_declines_on_gaussian_noise)
     EXPECT_GE(declinedOnGaussian, kScenes * 3 / 4);
 }
 
+// Below 30 residual degrees of freedom the loss's precision cannot be judged from the residuals
+// (the noise estimate's limit): the polish leaves such a fit as least squares gave it, on the
+// same heavy-tailed scenes where it polishes the whole set.
+TEST(Rcme_FinalPolish, leaves_fewer_than_35_points_to_least_squares)
+{
+    int polishedWhole = 0;
+    for (int seed = 0; seed < 30; ++seed) {
+        const SyntheticScene scene = heavyTailedScene(seed);
+        const TwoViewData data = sceneData(scene, /*calibrated=*/true);
+        std::vector<int> indices;
+        const Model model = leastSquaresFit(scene, data, indices);
+        Model whole = model;
+        if (!polishFinalMotionOn(data, indices, 0.25 * data.threshold, 3, whole))
+            continue;
+        ++polishedWhole;
+        indices.resize(34);
+        Model few = model;
+        EXPECT_FALSE(polishFinalMotionOn(data, indices, 0.25 * data.threshold, 3, few)) << seed;
+        EXPECT_EQ(few.motion->R, model.motion->R);
+    }
+    EXPECT_GE(polishedWhole, 10);
+}
+
 } // namespace
 } // namespace opencv_test
 

@@ -31,7 +31,8 @@ bool fitFinalModelOn(const TwoViewData& data, ModelForm form, const std::vector<
 `indices` with a Cauchy loss of scale `lossScale` (pixels) on their Sampson distances, so that
 the few widest residuals among the inliers weigh less than in least squares; its covariance is
 the final estimate's at the polished motion (fitFinalModelOn's formula). False (model
-untouched) without a camera matrix or a motion, on fewer than 10 or more than kMaxIteratedPoints
+untouched) without a camera matrix or a motion, on fewer than 35 (30 residual degrees of freedom,
+as the noise estimate) or more than kMaxIteratedPoints
 points (two_view_data.hpp), when the loss is less precise than least squares on these residuals
 (an M-estimator's sandwich, its inefficiency >= 1: Gaussian noise), or when the polished
 motion's covariance is not defined. */
