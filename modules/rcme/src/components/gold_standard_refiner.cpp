@@ -121,6 +121,10 @@ private:
         // Where the points do not determine the motion (a pure rotation leaves t free, when the
         // degeneracy test is off), the refit may turn t into the decomposition that puts the
         // points behind the cameras; then the motion stays and only its uncertainty is updated.
+        // Counted within recoverPose's 50 baselines, unlike the inliers' check above: on a
+        // corridor the far half of the points fails it, and the motion then stays off its mask's
+        // least-squares minimum; counting negative depths only costs the default's corridor
+        // confusion cells (doc/architecture.md, "Final fit and covariance").
         if (model.motion && 2 * countPointsInFront(fitted.motion->R, fitted.motion->t, data.points1,
                                                    data.points2, data.Kinv, &selection, nullptr) <
                                 static_cast<int>(inliers_.size())) {
