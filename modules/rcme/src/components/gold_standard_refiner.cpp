@@ -80,7 +80,7 @@ private:
     {
         finalInliers_.clear();
         for (int round = 0; round < maxRounds; ++round) {
-            if (!fitFinal(data, selection, model))
+            if (!fitFinal(data, selection, model, /*firstFit=*/round == 0))
                 break;
             finalInliers_ = confirmed_;
             if (round + 1 == maxRounds)
@@ -95,8 +95,10 @@ private:
 
     // One final fit on `selection`: the inliers in front of both cameras (calibrated), least
     // squares, the unconfirmed inliers dropped (confirmed_), the final uncertainty. False (model
-    // unchanged) when the points do not determine the model.
-    bool fitFinal(const TwoViewData& data, const std::vector<uchar>& selection, Model& model)
+    // unchanged) when the points do not determine the model, or when a refit after the first is
+    // undone (below).
+    bool fitFinal(const TwoViewData& data, const std::vector<uchar>& selection, Model& model,
+                  bool firstFit)
     {
         const std::vector<uchar>* chosen = &selection;
         if (model.motion) {
@@ -121,9 +123,16 @@ private:
         // Where the points do not determine the motion (a pure rotation leaves t free, when the
         // degeneracy test is off), the refit may turn t into the decomposition that puts the
         // points behind the cameras; then the motion stays and only its uncertainty is updated.
+        // Counted within recoverPose's 50 baselines, unlike the inliers' check above (negative
+        // depths only cost the default's corridor confusion cells, doc/architecture.md, "Final
+        // fit and covariance"). After a first final fit, the previous fit stands whole, its motion
+        // with the mask and covariance it was fitted with: this fit's mask and covariance with the
+        // previous motion left it off its mask's least-squares minimum.
         if (model.motion && 2 * countPointsInFront(fitted.motion->R, fitted.motion->t, data.points1,
                                                    data.points2, data.Kinv, &selection, nullptr) <
                                 static_cast<int>(inliers_.size())) {
+            if (!firstFit)
+                return false;
             fitted = model;
             if (!fitFinalModelOn(data, form, inliers_, 0, fitted, confirmed_))
                 return false;

@@ -357,6 +357,10 @@ constexpr double kMaxLeverage = 0.5;
 // outlier in the band near an epipole or at a depth far from the scene's takes over directions
 // of the motion and makes its covariance confident where it is wrong. Such a point must pass the
 // band on its studentized residual, |d| / sqrt(1 - h) < threshold, and have h <= 1/2.
+// One pass, at the fit on all of `indices`: a point that shared a direction with a dropped one
+// takes over its share in the refit and is kept, with a leverage up to near 1 in the final mask
+// (doc/architecture.md, "Final fit and covariance"). Repeated, the rule would strip a direction
+// that few points observe one point at a time, true inliers included.
 template <class Problem>
 bool dropUnconfirmedInliers(const TwoViewData& data, const Problem& problem,
                             std::vector<int>& indices)

@@ -1,0 +1,70 @@
+// This file is part of the rcme module. It is subject to the license terms in the LICENSE file
+// found in the top-level directory of this distribution.
+
+// The estimate's final fit (Refiner::finalize, components/gold_standard_refiner.cpp): the motion
+// it returns is the least-squares fit of the points its mask marks. Internal (cv::rcme::detail),
+// so standalone only, as test_components.cpp.
+
+#include "test_precomp.hpp"
+
+#ifdef RCME_STANDALONE_TESTS
+
+#include "estimation/model_fit.hpp"
+#include "geometry/epipolar.hpp"
+#include "test_internal_helpers.hpp"
+
+#include <opencv2/core/eigen.hpp>
+
+namespace opencv_test {
+namespace {
+
+using namespace cv::rcme::detail;
+
+// The sum of squared Sampson distances of the points `indices` under F.
+double squaredResiduals(const TwoViewData& data, const Eigen::Matrix3d& F,
+                        const std::vector<int>& indices)
+{
+    double cost = 0;
+    for (int i : indices)
+        cost += sampsonDistanceSquared(F, data.points1[static_cast<size_t>(i)],
+                                       data.points2[static_cast<size_t>(i)]);
+    return cost;
+}
+
+/* A corridor (1000 points, 30 % outliers, sigma 2 px) where a later round of the final fit is
+undone by its cheirality check (within 50 baselines): the previous round's motion was returned
+with this round's mask and covariance, 2.4 standard deviations off the least-squares minimum of
+that mask. The previous round stands whole now: refitted by least squares on the returned mask,
+the motion lowers the squared residuals by less than a quarter of sigma^2 (half a deviation). */
+TEST(Rcme_FinalFit, returns_the_least_squares_fit_of_its_own_mask)
+{
+    constexpr double kSigma = 2.0;
+    const SyntheticScene scene = testScene(SCENE_CORRIDOR, 54, 0.7, kSigma, 1000);
+    Params params;
+    params.sigma = kSigma;
+    const Report report =
+        estimateRelativeMotion(scene.points1, scene.points2, scene.cameraMatrix, params);
+    ASSERT_EQ(report.status, STATUS_SUCCESS);
+    TwoViewData data = sceneData(scene, /*calibrated=*/true, /*inliersOnly=*/false);
+    data.sigma = kSigma;
+    data.threshold = 1.96 * kSigma;
+    Model refit;
+    Motion& motion = refit.motion.emplace();
+    cv2eigen(report.R, motion.R);
+    cv2eigen(report.t, motion.t);
+    const Eigen::Matrix3d returnedF =
+        fundamentalFromEssential(skew(motion.t) * motion.R, data.Kinv);
+    std::vector<int> indices;
+    for (int i = 0; i < report.mask.rows; ++i)
+        if (report.mask.at<uchar>(i))
+            indices.push_back(i);
+    ASSERT_TRUE(fitModelOn(data, ModelForm::kMotion, indices, 20, refit));
+    const double decrease =
+        squaredResiduals(data, returnedF, indices) - squaredResiduals(data, refit.F, indices);
+    EXPECT_LT(decrease, 0.25 * kSigma * kSigma);
+}
+
+} // namespace
+} // namespace opencv_test
+
+#endif // RCME_STANDALONE_TESTS
