@@ -324,8 +324,8 @@ struct CV_EXPORTS_W_SIMPLE Report
     smallest absolute component) and b2 = t x b1. It is the first-order covariance of the Gold
     Standard fit on the points inside the band of that fit itself (the band is taken again after
     each fit, up to four times, until it no longer changes), in front of both cameras, and
-    confirmed by the others (leverage <= 1/2, studentized residual inside the band; the mask marks
-    them): sigma^2 / h(c / sigma) (J^T J)^-1, at the returned motion (after the final polish
+    confirmed by the others (leverage <= 1/2 in the fit on all of them, studentized residual inside
+    the band; the mask marks them; a point left alone in a direction may then hold more): sigma^2 / h(c / sigma) (J^T J)^-1, at the returned motion (after the final polish
     of Params::localOptimization, when it applies), with sigma the noise chosen by
     Params::useEstimatedNoise, c the inlier threshold and h(k) = E[z^2 | |z| < k] (the fit sees
     only residuals inside the band; 1 / h = 1.32 at 1.96 sigma).
