@@ -4,7 +4,7 @@ the ground truth's relative rotations are, measured from the images without the 
 two-view estimates.
 
     PYTHONPATH=build/python /usr/bin/python3 samples/benchmark/fountain_bundle_adjustment.py \
-        [--bootstrap 30] [--out /tmp/fountain_ba.md]
+        [--bootstrap 30] [--out doc/benchmark/fountain_bundle_adjustment.md]
 
 SIFT as the benchmark makes it (matching.Matcher, the same cache, detection at 1536 px), matched
 between all 55 pairs of images; matches further than GATE_PX (Sampson, px) from the ground
@@ -349,15 +349,22 @@ def tracks_under_ground_truth(sequence, matcher, log):
     return problem, (R_gt, C_gt, X, k_gt)
 
 
+def free_parameters(problem, C, intrinsics=()):
+    """The gauge: camera 0 fixed and the scale, one coordinate of the last camera's centre (the
+    one that changes most from camera 0's); the intrinsics fixed but those listed."""
+    n = problem.n_cameras
+    free = np.zeros(problem.n_parameters, bool)
+    free[6:6 * n] = True
+    free[6 * (n - 1) + 3 + int(np.argmax(np.abs(C[n - 1] - C[0])))] = False
+    free[6 * n + np.array(intrinsics, int)] = True
+    return free
+
+
 def adjusted(problem, gt, intrinsics, bootstrap, rng, log):
     """One adjustment from the ground truth: its state, covariance, and per pair of cameras the
     ground truth's relative motion in the adjusted one's tangent, with both covariances."""
     n = problem.n_cameras
-    free = np.zeros(problem.n_parameters, bool)
-    free[6:6 * n] = True  # camera 0 fixed
-    scale_axis = int(np.argmax(np.abs(gt[1][n - 1] - gt[1][0])))
-    free[6 * (n - 1) + 3 + scale_axis] = False  # the scale: one coordinate of the last centre
-    free[6 * n + np.array(intrinsics, int)] = True
+    free = free_parameters(problem, gt[1], intrinsics)
     state = adjust(problem, gt, free, iterations=100)
     cov, sigma = camera_covariance(problem, state, free)
     r_gt, r_ba = problem.residuals(gt)[0], problem.residuals(state)[0]
@@ -512,7 +519,8 @@ def report(result, bootstrap):
 
 
 def main():
-    ap = matching.benchmark_arguments(__doc__, REPO_ROOT, "/tmp/fountain_bundle_adjustment.md")
+    ap = matching.benchmark_arguments(__doc__, REPO_ROOT, os.path.join(
+        REPO_ROOT, "doc", "benchmark", "fountain_bundle_adjustment.md"))
     ap.add_argument("--bootstrap", type=int, default=30, help="bootstrap replicates over tracks")
     args = ap.parse_args()
     if not os.path.isdir(os.path.join(args.data, "epfl_strecha_fountain-P11")):
