@@ -2,7 +2,8 @@
 """Tests of the benchmark's judges (ctest rcme_benchmark_judges): the F-only judge's blindness
 test (metrics.epipole_blind), the confusion table's handling of unjudgeable runs, the given
 pairs whose rows are another pair's (datasets.rows_of_another_pair), and the covariance
-calibration's loop tests (covariance_calibration.loop_nees, loop_translation_nees).
+calibration's loop tests (covariance_calibration.loop_nees, loop_translation_nees), and the
+bundle adjustment that measures fountain-P11's ground-truth error (fountain_bundle_adjustment).
 
     PYTHONPATH=build/python /usr/bin/python3 samples/benchmark/test_judges.py"""
 import types
@@ -12,6 +13,7 @@ import numpy as np
 
 import covariance_calibration as calibration
 import datasets
+import fountain_bundle_adjustment as bundle
 import metrics
 import report
 from methods import rcme
@@ -169,6 +171,82 @@ class LoopTests(unittest.TestCase):
         self.assertTrue(2.0 < np.mean(split[:, 0]) < 4.2, np.mean(split[:, 0]))
         self.assertTrue(0.5 < np.mean(split[:, 1]) < 1.7, np.mean(split[:, 1]))
         self.assertLess(np.mean(shared[:, 1]), 0.5 * np.mean(split[:, 1]))
+
+
+def _multi_view(seed, cameras=6, points=300, sigma=0.5):
+    """Cameras on an arc looking at a box of points, every point seen by every camera with
+    Gaussian noise: (problem, true state)."""
+    rng = np.random.default_rng(seed)
+    K = np.array([[1400.0, 0, 768], [0, 1400.0, 512], [0, 0, 1]])
+    X = rng.uniform([-2, -1.5, 6], [2, 1.5, 9], (points, 3))
+    R, C = [], []
+    for a in np.radians(np.linspace(-15, 15, cameras)):
+        centre = np.array([7.5 * np.sin(a), 0.1 * rng.standard_normal(), 7.5 - 7.5 * np.cos(a)])
+        forward = np.array([0.0, 0.0, 7.5]) - centre
+        forward /= np.linalg.norm(forward)
+        right = np.cross([0.0, 1.0, 0.0], forward)
+        right /= np.linalg.norm(right)
+        R.append(np.array([right, np.cross(forward, right), forward]))
+        C.append(centre)
+    R, C = np.array(R), np.array(C)
+    cam, pt = np.repeat(np.arange(cameras), points), np.tile(np.arange(points), cameras)
+    truth = (R, C, X, np.array([K[0, 0], K[1, 1], K[0, 2], K[1, 2]]))
+    problem = bundle.Problem(cam, pt, np.zeros((len(cam), 2)), cameras, points)
+    problem.uv = problem.residuals(truth)[0] + sigma * rng.standard_normal((len(cam), 2))
+    return problem, truth
+
+
+class BundleAdjustment(unittest.TestCase):
+    def _adjusted(self, seed):
+        problem, truth = _multi_view(seed)
+        free = bundle.free_parameters(problem, truth[1])
+        start = bundle.adjust(problem, truth, None, iterations=10)  # points alone
+        state = bundle.adjust(problem, start, free, iterations=100)
+        return problem, truth, start, state, free
+
+    def test_relative_rotations_match_their_covariance(self):
+        values = []
+        for seed in range(8):
+            problem, truth, _, state, free = self._adjusted(seed)
+            cov = bundle.camera_covariance(problem, state, free)[0]
+            R, C = state[:2]
+            for i, j in ((0, 1), (1, 3), (2, 5)):
+                theta = bundle.relative_theta(truth[0], truth[1], i, j, (
+                    R[j] @ R[i].T, R[j] @ (C[i] - C[j])))
+                Cij = bundle.relative_covariance(state, cov, i, j)
+                values.append(float(theta[:3] @ np.linalg.solve(Cij[:3, :3], theta[:3])))
+        self.assertTrue(1.8 < np.mean(values) < 4.5, np.mean(values))
+
+    def test_exact_cameras_lower_the_cost_by_chi_square(self):
+        problem, truth, start, state, free = self._adjusted(11)
+        sigma = bundle.camera_covariance(problem, state, free)[1]
+        drop = (bundle.huber_cost(problem.residuals(start)[0], bundle.HUBER_PX, 1.0) -
+                bundle.huber_cost(problem.residuals(state)[0], bundle.HUBER_PX, 1.0)) / sigma ** 2
+        dof = int(free.sum())
+        self.assertLess(drop, dof + 5 * np.sqrt(2 * dof))
+        self.assertAlmostEqual(sigma, 0.5, delta=0.05)
+
+    def test_a_rotated_camera_is_seen(self):
+        """A ground truth with one camera turned by 0.05 deg: the adjustment, started from it,
+        ends where it ends from the true cameras, and the wrong camera's relative rotation
+        differs from it by the turn."""
+        problem, truth, _, state, free = self._adjusted(12)
+        turn = np.radians([0.0, 0.05, 0.0])
+        wrong = truth[0].copy()
+        wrong[3] = calibration._exp(turn) @ wrong[3]
+        start = bundle.adjust(problem, (wrong, *truth[1:]), None, iterations=10)
+        from_wrong = bundle.adjust(problem, start, free, iterations=100)
+        R, C = from_wrong[:2]
+        reference = (R[3] @ R[2].T, R[3] @ (C[2] - C[3]))
+        difference = (bundle.relative_theta(wrong, truth[1], 2, 3, reference) -
+                      bundle.relative_theta(truth[0], truth[1], 2, 3, reference))[:3]
+        self.assertLess(np.degrees(np.linalg.norm(difference - reference[0].T @ turn)), 0.002)
+        same = bundle.relative_theta(state[0], state[1], 2, 3, reference)
+        self.assertLess(np.degrees(np.linalg.norm(same[:3])), 0.001)
+        sigma = bundle.camera_covariance(problem, from_wrong, free)[1]
+        drop = (bundle.huber_cost(problem.residuals(start)[0], bundle.HUBER_PX, 1.0) -
+                bundle.huber_cost(problem.residuals(from_wrong)[0], bundle.HUBER_PX, 1.0))
+        self.assertGreater(drop / sigma ** 2, 100)
 
 
 if __name__ == "__main__":
