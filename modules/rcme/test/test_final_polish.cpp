@@ -103,15 +103,22 @@ ReturnedAgainstLeastSquares returnedAgainstLeastSquares(MakeScene makeScene, int
     return sums;
 }
 
+// The returned motion is measurably closer to the truth than least squares refitted from it.
+template <typename MakeScene>
+void expectReturnedBeatsLeastSquares(MakeScene makeScene, int scenes, int minRuns)
+{
+    const ReturnedAgainstLeastSquares sums = returnedAgainstLeastSquares(makeScene, scenes);
+    ASSERT_GE(sums.runs, minRuns);
+    EXPECT_LT(sums.returnedError, 0.9 * sums.leastSquaresError)
+        << "mean error " << sums.returnedError / sums.runs << " deg, least squares "
+        << sums.leastSquaresError / sums.runs;
+}
+
 // Over 30 heavy-tailed scenes the returned motion is measurably closer to the truth than least
 // squares refitted from it. Without the polish stage the two are the same fit and the test fails.
 TEST(Rcme_FinalPolish, beats_least_squares_on_heavy_tailed_sparse_matches)
 {
-    const ReturnedAgainstLeastSquares sums = returnedAgainstLeastSquares(heavyTailedScene, 30);
-    ASSERT_GE(sums.runs, 25);
-    EXPECT_LT(sums.returnedError, 0.9 * sums.leastSquaresError)
-        << "mean error " << sums.returnedError / sums.runs << " deg, least squares "
-        << sums.leastSquaresError / sums.runs;
+    expectReturnedBeatsLeastSquares(heavyTailedScene, 30, 25);
 }
 
 // The polish itself on the true matches: closer to the truth than least squares on the
@@ -218,11 +225,7 @@ SyntheticScene highwayScene(int seed)
 // returned motion was least squares'.
 TEST(Rcme_FinalPolish, polishes_a_scene_of_mostly_distant_points)
 {
-    const ReturnedAgainstLeastSquares sums = returnedAgainstLeastSquares(highwayScene, 20);
-    ASSERT_GE(sums.runs, 15);
-    EXPECT_LT(sums.returnedError, 0.9 * sums.leastSquaresError)
-        << "mean error " << sums.returnedError / sums.runs << " deg, least squares "
-        << sums.leastSquaresError / sums.runs;
+    expectReturnedBeatsLeastSquares(highwayScene, 20, 15);
 }
 
 } // namespace
