@@ -497,6 +497,19 @@ TEST(Rcme_TwoViewData, subsets_keep_the_problem_and_the_order)
     }
 }
 
+TEST(Rcme_Statistics, quantiles_match_their_closed_forms)
+{
+    // The bisections stop once the interval holds no double: they must still reach the root.
+    for (const double p : {1e-6, 0.05, 0.5, 0.95, 0.99, 0.999}) {
+        EXPECT_NEAR(chiSquareQuantile(p, 2), -2.0 * std::log1p(-p), 1e-12) << p;
+        const double z = normalQuantile(0.5 * (1.0 + p));
+        EXPECT_NEAR(chiSquareQuantile(p, 1), z * z, 1e-9 * std::max(1.0, z * z)) << p;
+        EXPECT_NEAR(0.5 * std::erfc(-normalQuantile(p) / std::sqrt(2.0)), p, 1e-15) << p;
+    }
+    EXPECT_NEAR(normalQuantile(0.975), 1.959963984540054, 1e-14);
+    EXPECT_NEAR(chiSquareQuantile(0.95, 4), 9.487729036781154, 1e-11);
+}
+
 } // namespace
 } // namespace opencv_test
 

@@ -33,6 +33,20 @@ namespace {
 
 constexpr double kDataDimension = 4.0;
 
+// Quantiles of chi-square with 2 DoF (the two-dimensional error of a true match), computed once:
+// each is a bisection, and the test asks for them on every call.
+double chiSquare2Quantile95()
+{
+    static const double quantile = chiSquareQuantile(0.95, 2);
+    return quantile;
+}
+
+double chiSquare2QuantileHalfOf95()
+{
+    static const double quantile = chiSquareQuantile(0.5 * 0.95, 2);
+    return quantile;
+}
+
 double gric(double sumOfCappedErrors, int n, double manifoldDimension, double parameters)
 {
     return sumOfCappedErrors + n * manifoldDimension * std::log(kDataDimension) +
@@ -65,7 +79,7 @@ well. Taken from H, not F: on a degenerate scene F's family absorbs part of the 
 estimate from F's residuals would hide the degeneracy. Never above Params::sigma. */
 double homographyInlierNoise(double statedSigma, std::vector<double> squaredErrors)
 {
-    const double cut = statedSigma * statedSigma * chiSquareQuantile(0.95, 2); // as in the caller
+    const double cut = statedSigma * statedSigma * chiSquare2Quantile95(); // as in the caller
     squaredErrors.erase(std::remove_if(squaredErrors.begin(), squaredErrors.end(),
                                        [cut](double e) { return !(e <= cut); }),
                         squaredErrors.end());
@@ -74,7 +88,7 @@ double homographyInlierNoise(double statedSigma, std::vector<double> squaredErro
     const auto middle =
         squaredErrors.begin() + static_cast<std::ptrdiff_t>(squaredErrors.size() / 2);
     std::nth_element(squaredErrors.begin(), middle, squaredErrors.end());
-    const double estimate = std::sqrt(*middle / chiSquareQuantile(0.5 * 0.95, 2));
+    const double estimate = std::sqrt(*middle / chiSquare2QuantileHalfOf95());
     return std::min(statedSigma, std::max(estimate, 1e-3 * statedSigma));
 }
 
@@ -224,7 +238,7 @@ HomographyComparison compareWithHomography(const TwoViewData& data, const Eigen:
     // on KITTI-01 16-21 a wrong motion's F loses to an H of 126 of 258 matches found by 200
     // samples, whose planar path then returns the right motion; 50 found one of 112, which did
     // not win.) Where no homography of a minimal sample holds half the candidates, none wins.
-    const double transferThreshold = data.sigma * std::sqrt(2.0 * chiSquareQuantile(0.95, 2));
+    const double transferThreshold = data.sigma * std::sqrt(2.0 * chiSquare2Quantile95());
     if (!someHomographyHoldsHalf(candidates1, candidates2, heldByF, transferThreshold))
         return result;
     // OpenCV's RANSAC here draws from a fixed seed, so the result is reproducible. A large set
@@ -249,7 +263,7 @@ HomographyComparison compareWithHomography(const TwoViewData& data, const Eigen:
 
     // GRIC over the points that either model explains: a point neither explains would be capped
     // in both, at costs that differ by the models' dimensions, and favour F for no reason.
-    const double homographyCut = data.sigma * data.sigma * chiSquareQuantile(0.95, 2);
+    const double homographyCut = data.sigma * data.sigma * chiSquare2Quantile95();
     std::vector<double> homographyErrors, fundamentalErrors;
     for (size_t i = 0; i < candidates1.size(); ++i) {
         const Eigen::Vector2d x1(candidates1[i].x, candidates1[i].y);
@@ -354,7 +368,7 @@ RotationComparison compareWithRotation(const TwoViewData& data, const Eigen::Mat
     Eigen::Matrix3d R = svd.matrixU() * sign * svd.matrixV().transpose();
 
     // The two-dimensional error of a true match: chi-square, 2 DoF, as for the homography.
-    const double cut = data.sigma * data.sigma * chiSquareQuantile(0.95, 2);
+    const double cut = data.sigma * data.sigma * chiSquare2Quantile95();
     std::vector<int> explained;
     Eigen::Matrix3d JtJ = Eigen::Matrix3d::Zero();
     for (int round = 0; round < 2; ++round) {

@@ -12,8 +12,8 @@ namespace detail {
 namespace {
 
 // Regularized lower incomplete gamma P(a, x) by its series (converges for every x, and the
-// chi-square arguments used here are small).
-double lowerRegularizedGamma(double a, double x)
+// chi-square arguments used here are small); gammaOfA = Gamma(a), computed once by the caller.
+double lowerRegularizedGamma(double a, double gammaOfA, double x)
 {
     if (x <= 0)
         return 0;
@@ -22,9 +22,21 @@ double lowerRegularizedGamma(double a, double x)
         term *= x / (a + n);
         sum += term;
     }
-    // tgamma, not lgamma: lgamma writes the global signgam, a data race when several threads
-    // estimate at once (found by TSan). a = dof / 2 is small here, far from tgamma's overflow.
-    return std::min(1.0, sum * std::exp(-x + a * std::log(x)) / std::tgamma(a));
+    return std::min(1.0, sum * std::exp(-x + a * std::log(x)) / gammaOfA);
+}
+
+// The root of below(x) (true left of it, false right of it) in [lo, hi], by at most 200
+// halvings. They stop once no double lies strictly inside (about 60 halvings here): from then
+// on a halving cannot change 0.5 (lo + hi), the value returned.
+template <class Below> double bisect(double lo, double hi, const Below& below)
+{
+    for (int i = 0; i < 200; ++i) {
+        const double mid = 0.5 * (lo + hi);
+        if (mid == lo || mid == hi)
+            break;
+        (below(mid) ? lo : hi) = mid;
+    }
+    return 0.5 * (lo + hi);
 }
 
 // log n!: summed below 128, Stirling's series above it (its next term is below 1e-20 there).
@@ -49,23 +61,18 @@ double normalQuantile(double p)
 {
     CV_Assert(p > 0 && p < 1);
     // Bisection on the CDF 0.5 erfc(-x / sqrt 2): plain, and exact to double precision.
-    double lo = -40, hi = 40;
-    for (int i = 0; i < 200; ++i) {
-        const double mid = 0.5 * (lo + hi);
-        (0.5 * std::erfc(-mid / std::sqrt(2.0)) < p ? lo : hi) = mid;
-    }
-    return 0.5 * (lo + hi);
+    return bisect(-40, 40, [p](double x) { return 0.5 * std::erfc(-x / std::sqrt(2.0)) < p; });
 }
 
 double chiSquareQuantile(double p, int dof)
 {
     CV_Assert(p > 0 && p < 1 && dof >= 1);
-    double lo = 0, hi = 10.0 * dof + 100;
-    for (int i = 0; i < 200; ++i) {
-        const double mid = 0.5 * (lo + hi);
-        (lowerRegularizedGamma(0.5 * dof, 0.5 * mid) < p ? lo : hi) = mid;
-    }
-    return 0.5 * (lo + hi);
+    const double a = 0.5 * dof;
+    // tgamma, not lgamma: lgamma writes the global signgam, a data race when several threads
+    // estimate at once (found by TSan). a = dof / 2 is small here, far from tgamma's overflow.
+    const double gammaOfA = std::tgamma(a);
+    return bisect(0, 10.0 * dof + 100,
+                  [&](double x) { return lowerRegularizedGamma(a, gammaOfA, 0.5 * x) < p; });
 }
 
 int binomialTailBound(int trials, double p, double level)
