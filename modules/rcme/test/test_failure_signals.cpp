@@ -50,6 +50,46 @@ TEST(Rcme_FailureSignals, uncertainty_bound_flags_only_motions_above_it)
     EXPECT_EQ(loose.status, STATUS_SUCCESS) << loose.message;
 }
 
+// Below 35 inliers the final fit's covariance takes the stated sigma (the noise estimate is too
+// noisy to replace it), but residuals far smaller than the stated sigma rule it out: the bound
+// then reads the largest noise they allow (templeSR 11-14 at 21 inliers, doc/results.md).
+TEST(Rcme_FailureSignals, uncertainty_bound_reads_the_noise_the_few_residuals_allow)
+{
+    SceneParams sp;
+    sp.kind = SCENE_GENERIC;
+    sp.numPoints = 25;
+    sp.inlierRatio = 1.0;
+    sp.sigma = 0.2; // five times below the stated 1 px
+    int tested = 0;
+    for (int seed = 0; seed < 3; ++seed) {
+        sp.seed = seed;
+        const SyntheticScene s = generateScene(sp);
+        cv::rcme::Params params;
+        params.maxTranslationStdDeg = 0; // the rotation's bound alone
+        params.maxRotationStdDeg = 0;
+        params.useEstimatedNoise = false; // Report::rotationStdDeg at the stated sigma
+        const Report stated = estimateRelativeMotion(s.points1, s.points2, s.cameraMatrix, params);
+        ASSERT_EQ(stated.status, STATUS_SUCCESS) << stated.message;
+        ASSERT_LT(countNonZero(stated.mask), 35); // the stated sigma's regime
+        ++tested;
+        const double atStated = cv::norm(stated.rotationStdDeg, NORM_INF);
+
+        // Half the stated sigma's deviation: flagged when the user asks for the stated sigma...
+        params.maxRotationStdDeg = 0.5 * atStated;
+        const Report kept = estimateRelativeMotion(s.points1, s.points2, s.cameraMatrix, params);
+        EXPECT_EQ(kept.status, STATUS_UNDETERMINED_MOTION) << kept.message;
+        // ... and returned when the residuals (0.2 px) rule 1 px out.
+        params.useEstimatedNoise = true;
+        const Report allowed = estimateRelativeMotion(s.points1, s.points2, s.cameraMatrix, params);
+        EXPECT_EQ(allowed.status, STATUS_SUCCESS) << "seed " << seed << ": " << allowed.message;
+        // A bound below what even the largest allowed noise gives still flags.
+        params.maxRotationStdDeg = 0.05 * atStated;
+        const Report tight = estimateRelativeMotion(s.points1, s.points2, s.cameraMatrix, params);
+        EXPECT_EQ(tight.status, STATUS_UNDETERMINED_MOTION) << tight.message;
+    }
+    EXPECT_EQ(tested, 3);
+}
+
 TEST(Rcme_FailureSignals, ambiguity_test_reports_its_gap_and_flags_below_the_margin)
 {
     int flagged = 0, tested = 0;

@@ -263,12 +263,17 @@ struct CV_EXPORTS_W_SIMPLE Params
     #STATUS_UNDETERMINED_MOTION. <= 0 disables it. Default 4 deg, chosen with inner sampling's
     trigger on synthetic scenes (doc/experiments_archive.md); the paper's experiments: 0. The
     bound applies to the model-based standard deviation, before Report::covariance is raised to
-    the residuals' sandwich, so a success's Report::rotationStdDeg can exceed it. */
+    the residuals' sandwich, so a success's Report::rotationStdDeg can exceed it. Its noise is the
+    final fit's: below 35 inliers the stated sigma, unless (with useEstimatedNoise) the inliers'
+    residuals rule it out at the 1 % level, then the largest noise they do not rule out,
+    noiseSigma sqrt(nu / chi2_nu(0.01)) with nu = inliers - 5 (a few precise inliers are not
+    flagged for a sigma they contradict). */
     CV_PROP_RW double maxRotationStdDeg;
     /** The same for the translation direction (Report::translationStdDeg), degrees. <= 0
     disables it, and with it the test that the moving points determine the translation
     (#STATUS_UNDETERMINED_MOTION). Default 8 deg, chosen with maxRotationStdDeg; the paper's
-    experiments: 0. As maxRotationStdDeg, it bounds the model-based standard deviation. */
+    experiments: 0. As maxRotationStdDeg, it bounds the model-based standard deviation, at the
+    same noise. */
     CV_PROP_RW double maxTranslationStdDeg;
     /** For #SAMPLER_PROSAC: one score per correspondence, higher is better (e.g. the negated
     ratio of the two best descriptor distances), CV_32F or CV_64F. Empty (default): the points
