@@ -88,22 +88,8 @@ def _skew(v):
     return np.array([[0, -v[2], v[1]], [v[2], 0, -v[0]], [-v[1], v[0], 0]])
 
 
-def _exp(omega):
-    return cv2.Rodrigues(np.asarray(omega, np.float64).reshape(3, 1))[0]
-
-
 def _log(R):
     return cv2.Rodrigues(np.asarray(R, np.float64))[0].ravel()
-
-
-def tangent_basis(t):
-    """B of Report::covariance: b1 = normalize(t x e_k), e_k the axis of t's smallest absolute
-    component, b2 = t x b1."""
-    e = np.zeros(3)
-    e[np.argmin(np.abs(t))] = 1.0
-    b1 = np.cross(t, e)
-    b1 /= np.linalg.norm(b1)
-    return np.c_[b1, np.cross(t, b1)]
 
 
 def tangent_error(R, t, R_true, t_true):
@@ -113,7 +99,7 @@ def tangent_error(R, t, R_true, t_true):
     along = float(t @ t_true)
     if along <= 0:
         return None
-    return np.r_[_log(np.asarray(R).T @ R_true), tangent_basis(t).T @ (t_true / along - t)]
+    return np.r_[_log(np.asarray(R).T @ R_true), metrics.tangent_basis(t).T @ (t_true / along - t)]
 
 
 def nees(theta, covariance):
@@ -128,11 +114,11 @@ def residuals_and_jacobian(R, t, K, p1, p2, step=1e-7):
     to the tangent (central differences)."""
     Kinv = np.linalg.inv(K)
     t = np.ravel(t) / np.linalg.norm(t)
-    B = tangent_basis(t)
+    B = metrics.tangent_basis(t)
 
     def residual(theta):
         t_theta = t + B @ theta[3:]
-        F = Kinv.T @ _skew(t_theta / np.linalg.norm(t_theta)) @ R @ _exp(theta[:3]) @ Kinv
+        F = Kinv.T @ _skew(t_theta / np.linalg.norm(t_theta)) @ R @ metrics.rotation_exp(theta[:3]) @ Kinv
         return datasets.sampson_residual(F, p1, p2)
 
     J = np.empty((len(p1), 5))
@@ -499,8 +485,8 @@ def _perturbed(report, delta):
     """The motion of a report moved by delta in its covariance's tangent: R exp([omega]x),
     t + B beta normalized."""
     R, t = np.asarray(report.R, np.float64), np.ravel(report.t) / np.linalg.norm(report.t)
-    t = t + tangent_basis(t) @ delta[3:]
-    return R @ _exp(delta[:3]), t / np.linalg.norm(t)
+    t = t + metrics.tangent_basis(t) @ delta[3:]
+    return R @ metrics.rotation_exp(delta[:3]), t / np.linalg.norm(t)
 
 
 def _coplanarity(motions):
@@ -569,7 +555,7 @@ def synthetic_loop_values(count, seed=1, geometries=SYNTHETIC_LOOP_GEOMETRIES, p
         for _ in range(count):
             X = np.c_[rng.uniform(-6, 6, points), rng.uniform(-4, 4, points),
                       rng.uniform(6, 20, points)]
-            rotations = [np.eye(3)] + [_exp(rng.normal(0, 0.05, 3)) for _ in range(2)]
+            rotations = [np.eye(3)] + [metrics.rotation_exp(rng.normal(0, 0.05, 3)) for _ in range(2)]
             centres = [np.zeros(3), np.r_[c1] + rng.normal(0, scatter, 3),
                        np.r_[c2] + rng.normal(0, scatter, 3)]
             images = []
@@ -912,7 +898,7 @@ def bundle_adjusted_ground_truth(args, rows):
     measures it (fountain_bundle_adjustment.py: the ground truth's relative motions against the
     adjusted ones, beyond the adjustment's own precision, over the benchmark's pairs; no two-view
     estimate in it), added to the reported covariance per axis."""
-    import fountain_bundle_adjustment as bundle  # it imports this module's tangent helpers
+    import fountain_bundle_adjustment as bundle
     fountain = [r for r in rows if r["dataset"] == "fountain-P11" and r["candidate"] == REPORTED]
     if not fountain:
         return []

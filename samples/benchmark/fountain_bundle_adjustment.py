@@ -33,7 +33,9 @@ import numpy as np
 import datasets
 import matching
 import pairs as pair_selection
-from covariance_calibration import REPO_ROOT, tangent_basis, _exp
+from metrics import rotation_exp, tangent_basis
+
+REPO_ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 
 GATE_PX = 4.0  # matches and observations further than this from the ground truth are outliers
 HUBER_PX = 1.0  # the Huber loss's corner (px); about 2-3 times the SIFT observations' noise
@@ -220,7 +222,7 @@ def schur(problem, U, V_inv, W, cols):
 def apply_step(state, dc, dp):
     R, C, X, k = state
     dc = dc.reshape(-1, 6)
-    R = np.array([_exp(d[:3]) @ Ri for d, Ri in zip(dc, R)])
+    R = np.array([rotation_exp(d[:3]) @ Ri for d, Ri in zip(dc, R)])
     return R, C + dc[:len(C), 3:], X + dp, k + dc[-1, :4]
 
 

@@ -155,3 +155,18 @@ def precision_recall(mask, truth):
     precision = found / max(int(mask.sum()), 1)
     recall = found / max(int(truth.sum()), 1)
     return precision, recall
+
+
+def rotation_exp(omega):
+    """R = exp([omega]x)."""
+    return cv2.Rodrigues(np.asarray(omega, np.float64).reshape(3, 1))[0]
+
+
+def tangent_basis(t):
+    """B of Report::covariance: b1 = normalize(t x e_k), e_k the axis of t's smallest absolute
+    component, b2 = t x b1."""
+    e = np.zeros(3)
+    e[np.argmin(np.abs(t))] = 1.0
+    b1 = np.cross(t, e)
+    b1 /= np.linalg.norm(b1)
+    return np.c_[b1, np.cross(t, b1)]

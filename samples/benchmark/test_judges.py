@@ -135,8 +135,8 @@ def _loop(centres, rotations):
 
 class LoopTests(unittest.TestCase):
     centres = [np.zeros(3), np.r_[1.0, 0.2, 0.3], np.r_[2.0, -0.3, 0.4]]
-    rotations = [np.eye(3), calibration._exp([0.02, -0.05, 0.01]),
-                 calibration._exp([-0.03, 0.04, 0.02])]
+    rotations = [np.eye(3), metrics.rotation_exp([0.02, -0.05, 0.01]),
+                 metrics.rotation_exp([-0.03, 0.04, 0.02])]
 
     def test_exact_estimates_close_both_loops(self):
         reports = _loop(self.centres, self.rotations)
@@ -233,7 +233,7 @@ class BundleAdjustment(unittest.TestCase):
         problem, truth, _, state, free = self._adjusted(12)
         turn = np.radians([0.0, 0.05, 0.0])
         wrong = truth[0].copy()
-        wrong[3] = calibration._exp(turn) @ wrong[3]
+        wrong[3] = metrics.rotation_exp(turn) @ wrong[3]
         start = bundle.adjust(problem, (wrong, *truth[1:]), None, iterations=10)
         from_wrong = bundle.adjust(problem, start, free, iterations=100)
         R, C = from_wrong[:2]

@@ -330,8 +330,9 @@ struct CV_EXPORTS_W_SIMPLE Report
     Standard fit on the points inside the band of that fit itself (the band is taken again after
     each fit, up to four times, until it no longer changes), in front of both cameras, and
     confirmed by the others (leverage <= 1/2 in the fit on all of them, studentized residual inside
-    the band; the mask marks them; a point left alone in a direction may then hold more): sigma^2 / h(c / sigma) (J^T J)^-1, at the returned motion (after the final polish
-    of Params::localOptimization, when it applies), with sigma the noise chosen by
+    the band; the mask marks them; a point left alone in a direction may then hold more): sigma^2 /
+    h(c / sigma) (J^T J)^-1, at the returned motion (after the final polish of
+    Params::localOptimization, when it applies), with sigma the noise chosen by
     Params::useEstimatedNoise, c the inlier threshold and h(k) = E[z^2 | |z| < k] (the fit sees
     only residuals inside the band; 1 / h = 1.32 at 1.96 sigma).
     With the estimated noise, sigma^2 is then the posterior (4 s0^2 + nu s^2) / (nu + 2): the
