@@ -84,10 +84,6 @@ FLOOR = "reported + a %g px epipolar floor, floor^2 (J^T J / n)^-1" % EPIPOLAR_F
 
 # ---- the covariance's tangent --------------------------------------------------------------
 
-def _skew(v):
-    return np.array([[0, -v[2], v[1]], [v[2], 0, -v[0]], [-v[1], v[0], 0]])
-
-
 def _log(R):
     return cv2.Rodrigues(np.asarray(R, np.float64))[0].ravel()
 
@@ -118,7 +114,7 @@ def residuals_and_jacobian(R, t, K, p1, p2, step=1e-7):
 
     def residual(theta):
         t_theta = t + B @ theta[3:]
-        F = Kinv.T @ _skew(t_theta / np.linalg.norm(t_theta)) @ R @ metrics.rotation_exp(theta[:3]) @ Kinv
+        F = Kinv.T @ metrics.skew(t_theta / np.linalg.norm(t_theta)) @ R @ metrics.rotation_exp(theta[:3]) @ Kinv
         return datasets.sampson_residual(F, p1, p2)
 
     J = np.empty((len(p1), 5))
@@ -280,7 +276,7 @@ def ground_truth_fit(report, pair, params):
     R, t = np.asarray(report.R, np.float64), np.asarray(report.t, np.float64)
     d, J = residuals_and_jacobian(R, t, pair.K, p1, p2)
     Kinv = np.linalg.inv(pair.K)
-    F_gt = Kinv.T @ _skew(np.ravel(pair.t_gt) / np.linalg.norm(pair.t_gt)) @ pair.R_gt @ Kinv
+    F_gt = Kinv.T @ metrics.skew(np.ravel(pair.t_gt) / np.linalg.norm(pair.t_gt)) @ pair.R_gt @ Kinv
     excess = float(np.sum(datasets.sampson_residual(F_gt, p1, p2) ** 2) - np.sum(d * d))
     sigma, h = _noise_and_truncation(report, params, len(d))
     D = np.empty((len(d), 4))

@@ -33,7 +33,7 @@ import numpy as np
 import datasets
 import matching
 import pairs as pair_selection
-from metrics import rotation_exp, tangent_basis
+from metrics import rotation_exp, skew, tangent_basis
 
 REPO_ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 
@@ -64,7 +64,7 @@ def build_tracks(sequence, matcher, max_side):
             if len(p1) < 8:
                 continue
             R, t, _ = sequence.relative_motion(i, j)
-            F = np.linalg.inv(sequence.K).T @ _skew(t) @ R @ np.linalg.inv(sequence.K)
+            F = np.linalg.inv(sequence.K).T @ skew(t) @ R @ np.linalg.inv(sequence.K)
             keep = datasets.sampson_distance(F, p1, p2) < GATE_PX
             edges += [(node(i, a), node(j, b)) for a, b in zip(p1[keep], p2[keep])]
     parent = list(range(len(coords)))
@@ -93,10 +93,6 @@ def build_tracks(sequence, matcher, max_side):
             obs_track.append(k)
     _, obs_track = np.unique(obs_track, return_inverse=True)
     return np.array(obs_cam), np.array(obs_uv, np.float64), obs_track
-
-
-def _skew(v):
-    return np.array([[0, -v[2], v[1]], [v[2], 0, -v[0]], [-v[1], v[0], 0]])
 
 
 def triangulate(R, C, K, obs_cam, obs_uv, obs_pt, count):

@@ -9,6 +9,8 @@ from dataclasses import dataclass
 import numpy as np
 import cv2
 
+import metrics
+
 try:
     import rcme
 except ImportError:  # built inside OpenCV
@@ -189,10 +191,6 @@ def _run_opencv_e(flag):
     return run
 
 
-def _skew(v):
-    return np.array([[0, -v[2], v[1]], [v[2], 0, -v[0]], [-v[1], v[0], 0]])
-
-
 def _poselib_ransac_options(budget):
     """PoseLib's RANSAC options for the budget: its Sampson threshold, N as min and max
     iterations when exact, its own adaptive bound at DEFAULT_CONFIDENCE otherwise."""
@@ -222,7 +220,7 @@ def _run_poselib():
             return Estimate(False, NO_MODEL, mask=np.zeros(len(p1), bool), seconds=seconds)
         R, t = np.asarray(pose.R), np.asarray(pose.t).reshape(3, 1)
         Kinv = np.linalg.inv(K)
-        F = Kinv.T @ _skew(t.ravel()) @ R @ Kinv
+        F = Kinv.T @ metrics.skew(t.ravel()) @ R @ Kinv
         return Estimate(True, "ok", _normalized(F), R, t, mask, seconds)
     return run
 

@@ -12,12 +12,9 @@ TRANSLATION_FAILURE_DEG = 15.0  # ... or translation direction error above this
 F_FAILURE_PX = 5.0             # F-only pairs: RMS Sampson error of the true matches above this
 
 
-def _skew(v):
+def skew(v):
+    """[v]x."""
     return np.array([[0, -v[2], v[1]], [v[2], 0, -v[0]], [-v[1], v[0], 0]])
-
-
-def _rotation(w):
-    return cv2.Rodrigues(np.asarray(w, np.float64).reshape(3, 1))[0]
 
 
 class _MotionModel:
@@ -31,12 +28,12 @@ class _MotionModel:
         self.size = 5
 
     def F(self, x):
-        R = _rotation(x[:3]) @ self.R
+        R = rotation_exp(x[:3]) @ self.R
         t = self.t + self.tangent @ x[3:]
-        return self.Kinv.T @ _skew(t / np.linalg.norm(t)) @ R @ self.Kinv
+        return self.Kinv.T @ skew(t / np.linalg.norm(t)) @ R @ self.Kinv
 
     def update(self, x):
-        self.R = _rotation(x[:3]) @ self.R
+        self.R = rotation_exp(x[:3]) @ self.R
         t = self.t + self.tangent @ x[3:]
         self.__init__(self.R, t, np.linalg.inv(self.Kinv))
 
@@ -50,8 +47,8 @@ class _FundamentalModel:
         self.size = 7
 
     def F(self, x):
-        U = self.U @ _rotation(x[:3])
-        V = self.V @ _rotation(x[3:6])
+        U = self.U @ rotation_exp(x[:3])
+        V = self.V @ rotation_exp(x[3:6])
         return U @ np.diag([1.0, self.s + x[6], 0.0]) @ V.T
 
     def update(self, x):
@@ -144,7 +141,7 @@ def epipole_blind(gt_points):
     epipoles = [(1, 0, 0), (1, 1, 0), (0, 1, 0), (-1, 1, 0),
                 (cx + d, cy, 1), (cx, cy + d, 1), (cx - d, cy, 1), (cx, cy - d, 1)]
     for e in epipoles:
-        F = _skew(np.asarray(e, np.float64)) @ H
+        F = skew(np.asarray(e, np.float64)) @ H
         if f_error(F / np.linalg.norm(F), gt_points) > F_FAILURE_PX:
             return False
     return True
