@@ -132,12 +132,6 @@ bool residualScores(const TwoViewData& data, const Model& model, const std::vect
     return true;
 }
 
-// sigma^2 / h(c / sigma), the model-based covariance's factor on (J^T J)^-1.
-double truncatedNoiseVariance(double variance, double threshold)
-{
-    return variance / truncatedNormalVariance(threshold / std::sqrt(variance));
-}
-
 class ResidualCovariance final : public EstimationStage
 {
 public:

@@ -40,8 +40,8 @@ double noiseTheResidualsAllow(const TwoViewData& data, const Model& model, int i
         model.noiseSigma * std::sqrt(dof / chiSquareQuantile(kStatedNoiseExcludedAt, dof));
     if (!(largest < data.sigma))
         return 1.0;
-    return largest * largest * truncatedNormalVariance(data.threshold / data.sigma) /
-           (data.sigma * data.sigma * truncatedNormalVariance(data.threshold / largest));
+    return truncatedNoiseVariance(largest * largest, data.threshold) /
+           truncatedNoiseVariance(data.sigma * data.sigma, data.threshold);
 }
 
 class UncertaintyBound final : public EstimationStage

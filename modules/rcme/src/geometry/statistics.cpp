@@ -138,6 +138,11 @@ double truncatedNormalVariance(double k)
     return 1.0 - 2.0 * k * density / mass;
 }
 
+double truncatedNoiseVariance(double variance, double threshold)
+{
+    return variance / truncatedNormalVariance(threshold / std::sqrt(variance));
+}
+
 double noiseFromTruncatedResiduals(double meanSquare, double threshold)
 {
     const double nan = std::numeric_limits<double>::quiet_NaN();

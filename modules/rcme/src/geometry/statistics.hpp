@@ -34,6 +34,11 @@ double samplesForConfidence(double confidence, double goodSample);
 of half-width k sigma truncates (1 for k -> infinity, k^2 / 3 for k -> 0). */
 double truncatedNormalVariance(double k);
 
+/** variance / truncatedNormalVariance(threshold / sqrt(variance)): the factor on (J^T J)^-1 of a
+fit's model-based covariance at noise variance `variance` whose residuals a band |d| < threshold
+has truncated. */
+double truncatedNoiseVariance(double variance, double threshold);
+
 /** The sigma of zero-mean Gaussian residuals from the mean square of those kept by the band
 |d| < threshold: solves sigma^2 truncatedNormalVariance(threshold / sigma) = meanSquare. NaN
 when meanSquare is not below threshold^2 / 3 (residuals spread as uniformly as the band allows:
