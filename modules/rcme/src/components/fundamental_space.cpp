@@ -38,7 +38,7 @@ public:
 
     // Without K a family of F, [e']x H, explains the plane's points: only the points off the
     // plane can fix the epipole.
-    StageOutcome resolveHomography(const TwoViewData& data, Scorer& scorer,
+    StageOutcome resolveHomography(const TwoViewData& data, const Refinement&, Scorer& scorer,
                                    const Eigen::Matrix3d& H,
                                    const Estimate& estimate) const override
     {

@@ -466,8 +466,8 @@ public:
             compareWithHomography(context.data, estimate.model.F, estimate.mask);
         if (!homography.homographyExplainsInliers)
             return {};
-        return context.space.resolveHomography(context.data, context.scorer, homography.H,
-                                               estimate);
+        return context.space.resolveHomography(context.data, context.refinement, context.scorer,
+                                               homography.H, estimate);
     }
 };
 

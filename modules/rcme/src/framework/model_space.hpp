@@ -48,9 +48,10 @@ public:
                                                   Fit& selected) const = 0;
 
     /** A homography H explains the inliers of a standing estimate as well as its F: what the
-    inliers still determine (Params::degeneracyTest; the status says what they do not). */
-    virtual StageOutcome resolveHomography(const TwoViewData& data, Scorer& scorer,
-                                           const Eigen::Matrix3d& H,
+    inliers still determine (Params::degeneracyTest; the status says what they do not). The
+    refinement gives the final fit, at which a space may check the comparison again. */
+    virtual StageOutcome resolveHomography(const TwoViewData& data, const Refinement& refinement,
+                                           Scorer& scorer, const Eigen::Matrix3d& H,
                                            const Estimate& estimate) const = 0;
 
     /** The last decision, after the final fit and the decisions: the recoverPose mask
