@@ -27,12 +27,10 @@ between 0.25 and PoseLib's 0.5, higher AUC@10 on both, sparse and dense (doc/res
 final polish"). */
 constexpr double kLossScaleOfThreshold = 0.25;
 
-/* Reweighted steps from the least-squares fit, at most (and Params::refineIterations): three give
-most of what twenty give at half the cost (the calibrated pairs: 0.087 against 0.176 ms per call,
-4 % against 9 % of an adaptive call; AUC@10 of KITTI and fountain within 0.0002, templeSR's
-sparse pairs 0.7222 against 0.7304; doc/results.md, "The final polish"). */
-constexpr int kMaxIterations = 3;
-
+/* Reweighted steps from the least-squares fit: as many as the refinement's
+(Params::refineIterations; Levenberg-Marquardt stops once the cost stops falling). Three, tried for
+their cost, stopped short on a VO front end's thousand-odd tracks (doc/vo_front_end.md, "The
+polish's steps"). */
 class FinalPolish final : public EstimationStage
 {
 public:
@@ -48,7 +46,7 @@ public:
         StageOutcome outcome;
         Model& polished = outcome.model.emplace(estimate.model);
         if (!polishFinalMotionOn(data, indices, kLossScaleOfThreshold * data.threshold,
-                                 std::min(maxIterations_, kMaxIterations), polished))
+                                 maxIterations_, polished))
             return {};
         std::vector<uchar>& inliers = outcome.inliers.emplace();
         context.scorer.classify(data, polished, inliers);
