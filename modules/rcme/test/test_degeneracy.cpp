@@ -15,8 +15,8 @@
 #include "framework/estimator_factory.hpp"
 #include "framework/ransac_loop.hpp"
 #include "framework/refinement.hpp"
-#include "framework/two_view_input.hpp"
 #include "geometry/epipolar.hpp"
+#include "test_internal_helpers.hpp"
 
 #include <opencv2/core/eigen.hpp>
 #endif
@@ -328,12 +328,10 @@ TEST(Rcme_Degeneracy, a_homography_that_loses_at_the_final_fit_leaves_no_ambigui
                 for (int seed = 0; seed < 20; ++seed) {
                     SceneParams sp = testSceneParams(SCENE_PLANE, seed, 1.0, 1.0, points);
                     sp.planeRelief = relief;
-                    const SyntheticScene scene = generateScene(sp);
-                    Params params;
-                    params.randomGeneratorState = seed;
-                    const TwoViewData data =
-                        makeTwoViewData(scene.points1, scene.points2, scene.cameraMatrix, params);
-                    EstimatorComponents components = createEstimator(params, data);
+                    const SeededScene seeded = seededScene(sp);
+                    const SyntheticScene& scene = seeded.scene;
+                    const TwoViewData& data = seeded.data;
+                    EstimatorComponents components = createEstimator(seeded.params, data);
                     const Refinement refinement(*components.scorer, components.refiner.get());
                     const Estimate estimate = motionOff(scene, data, offDeg);
                     const Model& off = estimate.model;

@@ -7,6 +7,7 @@
 #define OPENCV_RCME_TEST_INTERNAL_HELPERS_HPP
 
 #include "framework/components.hpp"
+#include "framework/two_view_input.hpp"
 
 #include <opencv2/core/eigen.hpp>
 
@@ -31,6 +32,24 @@ inline cv::rcme::detail::TwoViewData sceneData(const cv::rcme::SyntheticScene& s
     data.sigma = 1.0;
     data.threshold = 1.96;
     return data;
+}
+
+//! A generated scene and its problem as estimateRelativeMotion makes it with the default Params,
+//! seeded with the scene's seed.
+struct SeededScene
+{
+    cv::rcme::SyntheticScene scene;
+    cv::rcme::Params params;
+    cv::rcme::detail::TwoViewData data;
+};
+inline SeededScene seededScene(const cv::rcme::SceneParams& sceneParams)
+{
+    SeededScene seeded;
+    seeded.scene = cv::rcme::generateScene(sceneParams);
+    seeded.params.randomGeneratorState = sceneParams.seed;
+    seeded.data = cv::rcme::detail::makeTwoViewData(seeded.scene.points1, seeded.scene.points2,
+                                                    seeded.scene.cameraMatrix, seeded.params);
+    return seeded;
 }
 
 } // namespace opencv_test

@@ -13,6 +13,7 @@
 #include "components/motion_support.hpp"
 #include "framework/estimation_pipeline.hpp"
 #include "framework/estimator_factory.hpp"
+#include "test_internal_helpers.hpp"
 
 namespace opencv_test {
 namespace {
@@ -40,11 +41,9 @@ TEST(Rcme_RivalMotionDecision, leaves_out_only_rivals_that_stay_far_once_refitte
         for (int seed = 0; seed < testRuns(6, 2); ++seed) {
             SceneParams sp = testSceneParams(c.kind, seed, c.inlierRatio, 1.0, c.points);
             sp.forwardMotion = c.forward;
-            const SyntheticScene scene = generateScene(sp);
-            Params params;
-            params.randomGeneratorState = seed;
-            const TwoViewData data =
-                makeTwoViewData(scene.points1, scene.points2, scene.cameraMatrix, params);
+            const SeededScene seeded = seededScene(sp);
+            const TwoViewData& data = seeded.data;
+            const Params& params = seeded.params;
             EstimatorComponents components = createEstimator(params, data);
             const Estimation result = estimateModel(data, components);
             const Estimate& estimate = result.estimate;
