@@ -316,8 +316,9 @@ cv::rcme::detail::Estimate motionOff(const SyntheticScene& scene,
 // final fit is a few degrees off: at that motion a homography explains the inliers better than F,
 // at the motion the final fit moves to it does not. The planar path still picks among the plane's
 // motions, but two of them that fit the plane about equally are no ambiguity there: the parallax
-// decides (components/motion_space.cpp; without that rule two of these cases are flagged
-// degenerate). Internal (cv::rcme::detail), so standalone only, as test_components.cpp.
+// decides (components/motion_space.cpp; without that rule the case of 40 points, relief 0.2,
+// 3 deg off, seed 1 is flagged degenerate). Internal (cv::rcme::detail), so standalone only, as
+// test_components.cpp.
 TEST(Rcme_Degeneracy, a_homography_that_loses_at_the_final_fit_leaves_no_ambiguity)
 {
     using namespace cv::rcme::detail;
