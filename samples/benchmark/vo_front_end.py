@@ -96,17 +96,20 @@ def stale_copy(image, index):
     return np.clip(image.astype(np.float64) + noise, 0, 255).astype(np.uint8)
 
 
-def vo_pairs(sequence, label, frames=None, inputs=("KLT",)):
-    """[(kind, Pair, Tracks)]: kind is "i+1", "i+2", "static", "stale" or "after stale"; the
-    pair's dataset is "<sequence> <input>"."""
-    count = len(sequence.images) if frames is None else min(frames, len(sequence.images))
-    images = [cv2.imread(path, cv2.IMREAD_GRAYSCALE) for path in sequence.images[:count]]
+def vo_pairs(sequence, label, frames=None, inputs=("KLT",), first=0):
+    """[(kind, Pair, Tracks)] of frames first, first + 1, ... (`frames` of them, all by default):
+    kind is "i+1", "i+2", "static", "stale" or "after stale"; the pair's dataset is
+    "<sequence> <input>"."""
+    end = len(sequence.images) if frames is None else min(first + frames, len(sequence.images))
+    images = {i: cv2.imread(sequence.images[i], cv2.IMREAD_GRAYSCALE) for i in range(first, end)}
     K = sequence.K
     plan = []  # (kind, i, j, first image, second image)
     for step in (1, 2):
         plan += [("i+%d" % step, i, i + step, images[i], images[i + step])
-                 for i in range(count - step)]
-    for i in range(0, count - 1, SPECIAL_EVERY):
+                 for i in range(first, end - step)]
+    for i in range(first, end - 1):
+        if i % SPECIAL_EVERY:
+            continue
         stale = stale_copy(images[i], i)
         plan += [("static", i, i, images[i], images[i]), ("stale", i, i, images[i], stale),
                  ("after stale", i, i + 1, stale, images[i + 1])]
@@ -245,24 +248,42 @@ def main(argv=None):
     ap.add_argument("--inputs", default="KLT,ORB", help="KLT, ORB or both (comma-separated)")
     ap.add_argument("--quick", action="store_true",
                     help="the first 8 frames of each sequence (the ctest smoke run)")
+    ap.add_argument("--sequence", help="only this sequence (e.g. \"KITTI 01\")")
+    ap.add_argument("--first-frame", type=int, default=0, help="frames from this one on")
+    ap.add_argument("--frames", type=int, help="this many frames (default: all, 8 with --quick)")
+    ap.add_argument("--methods", help="comma-separated subset of " + ", ".join(METHODS))
+    ap.add_argument("--max-wrong-with-success", type=int,
+                    help="exit with 1 when the default returns more wrong motions with success")
     args = ap.parse_args(argv)
     cv2.setNumThreads(1)
-    sequences = load_sequences(args.data)
+    sequences = [s for s in load_sequences(args.data)
+                 if args.sequence is None or s[0] == args.sequence]
     if not sequences:
         print("no KITTI sequence under %s" % args.data)
         return 77
-    names = [m for m in METHODS if m in methods.METHODS]
+    chosen = METHODS if args.methods is None else args.methods.split(",")
+    names = [m for m in chosen if m in methods.METHODS]
     inputs = args.inputs.split(",")
+    frames = args.frames if args.frames is not None else (8 if args.quick else None)
     task = []
     for label, sequence in sequences:
-        task += vo_pairs(sequence, label, 8 if args.quick else None, inputs)
+        task += vo_pairs(sequence, label, frames, inputs, args.first_frame)
     load = os.getloadavg()[0]
     rows = run(task, names, args.sigma)
     write_report(rows, names, args.out, task, argv, args.sigma, load)
     print(open(args.out).read())
     complete = all(any(r["method"] == m and r["pair"] == p.name and r["dataset"] == p.dataset
                        for r in rows) for _, p, _ in task for m in names)
-    return 0 if complete else 1
+    if not complete:
+        return 1
+    wrong = [r for r in rows if r["method"] == methods.DEFAULT_METHOD and r["ok"]
+             and r.get("gt_fail")]
+    if args.max_wrong_with_success is not None and len(wrong) > args.max_wrong_with_success:
+        print("%s: %d wrong with success (at most %d): %s" % (
+            methods.DEFAULT_METHOD, len(wrong), args.max_wrong_with_success,
+            ", ".join("%s %s" % (r["dataset"], r["pair"]) for r in wrong)))
+        return 1
+    return 0
 
 
 if __name__ == "__main__":

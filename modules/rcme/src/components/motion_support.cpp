@@ -56,13 +56,16 @@ double truncatedCost(const TwoViewData& data, const Eigen::Matrix3d& F, double c
 }
 
 MotionSupport refitOnOwnPoints(const TwoViewData& data, Model& motion, std::vector<uchar>& within,
-                               std::vector<uchar>& inFront)
+                               std::vector<uchar>& inFront, int maxRounds)
 {
-    constexpr int kFitIterations = 20, kRounds = 2;
-    std::vector<int> inliers;
-    for (int round = 0; round < kRounds; ++round) {
+    constexpr int kFitIterations = 20, kAlwaysRounds = 2;
+    std::vector<int> inliers, previous;
+    for (int round = 0; round < maxRounds; ++round) {
         markWithinBand(data, motion.F, within); // a round fits the band's points, in front or not
         maskIndices(within, inliers);
+        if (round >= kAlwaysRounds && inliers == previous)
+            break;
+        previous = inliers;
         Model fitted = motion;
         if (fitModelOn(data, ModelForm::kMotion, inliers, kFitIterations, fitted))
             motion = fitted;
@@ -76,10 +79,10 @@ namespace {
 // is no distinct motion from `selected` then.
 std::optional<Model> refittedRival(const TwoViewData& data, const Model& motion,
                                    const Model& selected, std::vector<uchar>& within,
-                                   std::vector<uchar>& inFront)
+                                   std::vector<uchar>& inFront, int maxRounds)
 {
     Model refitted = motion;
-    if (refitOnOwnPoints(data, refitted, within, inFront).support <= 0)
+    if (refitOnOwnPoints(data, refitted, within, inFront, maxRounds).support <= 0)
         return std::nullopt;
     if (recoverMotion(data, within, refitted) && areDistinctMotions(refitted, selected))
         return refitted;
@@ -93,7 +96,7 @@ std::vector<Model> refittedRivalMotions(const TwoViewData& data,
                                         const Model& selected, int selectedInliers,
                                         const std::optional<RawCostGate>& gate,
                                         const std::optional<RefitScreen>& screen,
-                                        std::vector<int>* skipped)
+                                        std::vector<int>* skipped, int maxRounds)
 {
     const TwoViewData subset = data.size() > static_cast<int>(kMaxIteratedPoints)
                                    ? evenlySpacedSubset(data, kMaxIteratedPoints)
@@ -117,7 +120,7 @@ std::vector<Model> refittedRivalMotions(const TwoViewData& data,
         }
         if (screens) {
             std::optional<Model> screened =
-                refittedRival(screenData, rival.model, selected, within, inFront);
+                refittedRival(screenData, rival.model, selected, within, inFront, maxRounds);
             if (screened &&
                 truncatedCost(data, screened->F, screen->capSquared) > screen->maxCost) {
                 motions.push_back(std::move(*screened));
@@ -125,7 +128,7 @@ std::vector<Model> refittedRivalMotions(const TwoViewData& data,
             }
         }
         if (std::optional<Model> refitted =
-                refittedRival(fitData, rival.model, selected, within, inFront))
+                refittedRival(fitData, rival.model, selected, within, inFront, maxRounds))
             motions.push_back(std::move(*refitted));
     }
     return motions;

@@ -38,12 +38,13 @@ double truncatedCost(const TwoViewData& data, const Eigen::Matrix3d& F);
 //! The same with each point's cost at most `capSquared` (pixels^2).
 double truncatedCost(const TwoViewData& data, const Eigen::Matrix3d& F, double capSquared);
 
-/** Refits a motion on the points within its own band, twice, and returns its fit, `within` and
-`inFront` as motionSupport leaves them for the refitted motion. Not on the selected model's
-inliers: those pull every other motion towards the selected one (on a plane the selected F is one
-of a family). */
+/** Refits a motion on the points within its own band (a round: the band, then the fit on it),
+twice, and returns its fit, `within` and `inFront` as motionSupport leaves them for the refitted
+motion. Not on the selected model's inliers: those pull every other motion towards the selected
+one (on a plane the selected F is one of a family). With `maxRounds` above two, the rounds go on
+until a round's band is the previous one's or `maxRounds` are done. */
 MotionSupport refitOnOwnPoints(const TwoViewData& data, Model& motion, std::vector<uchar>& within,
-                               std::vector<uchar>& inFront);
+                               std::vector<uchar>& inFront, int maxRounds = 2);
 
 //! Which rivals are worth refitting: those whose truncated cost as the loop left them, each
 //! point's cost at most `capSquared` (pixels^2), is at most `maxCost`.
@@ -76,13 +77,14 @@ again once refitted (forward motion, far points: a sample's few points chose -t)
 Refit and decomposition on an evenly spaced subset of a large problem (kMaxIteratedPoints). With
 a `gate`, a rival it turns down is not refitted (its refit is the expensive part; the stages say
 which rivals cannot come close) and its index in `rivals` is appended to `skipped` when given;
-with a `screen`, a rival its subset refit shows to be far is not refitted on all the points. */
+with a `screen`, a rival its subset refit shows to be far is not refitted on all the points.
+`maxRounds`: refitOnOwnPoints'. */
 std::vector<Model> refittedRivalMotions(const TwoViewData& data,
                                         const std::vector<RivalMotions::Rival>& rivals,
                                         const Model& selected, int selectedInliers,
                                         const std::optional<RawCostGate>& gate = std::nullopt,
                                         const std::optional<RefitScreen>& screen = std::nullopt,
-                                        std::vector<int>* skipped = nullptr);
+                                        std::vector<int>* skipped = nullptr, int maxRounds = 2);
 
 } // namespace detail
 } // namespace rcme
