@@ -111,23 +111,40 @@ std::vector<Model> unweighedRivalsRefitted(const StageContext& context, const Es
 }
 
 /* On a plane's motion the rival decision has not refitted the rivals; they are refitted here in
-the band where they are weighed, the stage's cap (kMaxRoundsAtDataNoise rounds at most: with a
-band that narrow the points come in a few at a time). In the stated threshold's band, two rounds
-left KITTI 01 KLT (19, 20)'s right rival 8.6 deg from the truth and costlier than the wrong
-estimate the plane's path returned (marginal cost 2180 against 2008 sigma_hat^2); in the cap's band
-it settles at 0.6 deg (1583) and replaces it, while the estimate refitted the same way stays where
-it is (2015; doc/vo_front_end.md). */
+the band where they are weighed, the stage's cap: two rounds, and a rival that then costs less
+than `mostCost` (it could replace the estimate) again from the loop's hypothesis, until its band
+settles (kMaxRoundsAtDataNoise rounds at most: with a band that narrow the points come in a few at
+a time; the others stay at two, which bounds the cost on large near-planar inputs). In the stated
+threshold's band, two rounds left KITTI 01 KLT (19, 20)'s right rival 8.6 deg from the truth and
+costlier than the wrong estimate the plane's path returned (marginal cost 2180 against 2008
+sigma_hat^2); in the cap's band two rounds bring it to 1901, and settled it lands at 0.6 deg (1583)
+and replaces it, while the estimate refitted the same way stays where it is (2015;
+doc/vo_front_end.md). */
 constexpr int kMaxRoundsAtDataNoise = 20;
 
 std::vector<Model> rivalsRefittedAtDataNoise(const StageContext& context, const Estimate& estimate,
-                                             double cap)
+                                             double cap, double mostCost)
 {
     TwoViewData atDataNoise = context.data;
     atDataNoise.threshold = cap;
     atDataNoise.sigma = estimate.model.noiseSigma;
-    return refittedRivalMotions(atDataNoise, context.search.rivals, estimate.model,
-                                estimate.score.inlierCount, std::nullopt, std::nullopt, nullptr,
-                                kMaxRoundsAtDataNoise);
+    std::vector<Model> refitted;
+    for (const RivalMotions::Rival& rival : context.search.rivals) {
+        const std::vector<RivalMotions::Rival> one{rival};
+        std::vector<Model> motion =
+            refittedRivalMotions(atDataNoise, one, estimate.model, estimate.score.inlierCount);
+        if (motion.empty())
+            continue;
+        if (marginalCost(context.data, motion.front().F, cap * cap) < mostCost) {
+            std::vector<Model> settled =
+                refittedRivalMotions(atDataNoise, one, estimate.model, estimate.score.inlierCount,
+                                     std::nullopt, std::nullopt, nullptr, kMaxRoundsAtDataNoise);
+            if (!settled.empty())
+                motion = std::move(settled);
+        }
+        refitted.push_back(std::move(motion.front()));
+    }
+    return refitted;
 }
 
 /* A stated threshold wider than the data's noise lets a wrong motion collect points a few noise
@@ -164,9 +181,10 @@ public:
             estimate.planar ? kRivalNoiseShare * bandNoise(data, estimate.model.F) : 0.0;
         // The rival decision's refitted motions when it ran; on a plane's motion, which it
         // leaves, the rivals refitted here at the data's noise.
-        std::vector<Model> rivals = estimate.weighedMotions.empty()
-                                        ? rivalsRefittedAtDataNoise(context, estimate, cap)
-                                        : estimate.weighedMotions;
+        std::vector<Model> rivals =
+            estimate.weighedMotions.empty()
+                ? rivalsRefittedAtDataNoise(context, estimate, cap, bestCost)
+                : estimate.weighedMotions;
         for (Model& rival : unweighedRivalsRefitted(context, estimate, capSquared))
             rivals.push_back(std::move(rival));
         std::optional<Model> best;
