@@ -125,7 +125,10 @@ constexpr int kMaxRoundsAtDataNoise = 20;
 std::vector<Model> rivalsRefittedAtDataNoise(const StageContext& context, const Estimate& estimate,
                                              double cap, double mostCost)
 {
-    TwoViewData atDataNoise = context.data;
+    // The refits' own subset of a large problem (refittedRivalMotions), taken once.
+    TwoViewData atDataNoise = context.data.size() > static_cast<int>(kMaxIteratedPoints)
+                                  ? evenlySpacedSubset(context.data, kMaxIteratedPoints)
+                                  : context.data;
     atDataNoise.threshold = cap;
     atDataNoise.sigma = estimate.model.noiseSigma;
     std::vector<Model> refitted;
