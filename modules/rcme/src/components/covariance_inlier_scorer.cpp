@@ -22,7 +22,8 @@ namespace {
 // sample's covariance can widen the bands over the whole image; every outlier is then an inlier
 // and, as the most inliers win, the loosest hypothesis is selected (measured without K on the
 // corridor: all 500 points, half of them outliers). First-order propagation is not valid that
-// far anyway. The cap is chosen on the corridor (doc/experiments_archive.md, "Cov-RANSAC's band cap").
+// far anyway. The cap is chosen on the corridor (doc/experiments_archive.md, "Cov-RANSAC's
+// band cap").
 constexpr double kMaxVarianceInNoiseUnits = 2.0;
 
 class CovarianceInlierScorer final : public Scorer
