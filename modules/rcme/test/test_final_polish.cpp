@@ -27,16 +27,7 @@ using namespace cv::rcme::detail;
 resemble (most within a fraction of a pixel, some a pixel off). */
 SyntheticScene heavyTailedScene(int seed)
 {
-    SyntheticScene scene = testScene(SCENE_GENERIC, seed, 0.75, 0.0, 60);
-    cv::RNG rng(static_cast<uint64>(1000 + seed));
-    for (int i = 0; i < scene.points2.rows; ++i) {
-        if (!scene.inlierMask.at<uchar>(i))
-            continue;
-        const double sigma = rng.uniform(0.0, 1.0) < 0.25 ? 1.2 : 0.3;
-        scene.points2.at<double>(i, 0) += rng.gaussian(sigma);
-        scene.points2.at<double>(i, 1) += rng.gaussian(sigma);
-    }
-    return scene;
+    return opencv_test::heavyTailedScene(seed, 60, static_cast<uint64>(1000 + seed));
 }
 
 // The final fit's least squares on every point of `data`, from the true motion.

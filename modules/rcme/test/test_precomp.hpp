@@ -64,6 +64,23 @@ inline SyntheticScene testScene(SceneKind kind, int seed, double inlierRatio = 0
     return generateScene(testSceneParams(kind, seed, inlierRatio, sigma, numPoints));
 }
 
+/** testScene's generic scene without noise, then on its true matches the noise of real matches
+with wide tails: per coordinate of the second point, Gaussian of 0.3 px, one in four 1.2 px
+(seeded by `noiseSeed`). */
+inline SyntheticScene heavyTailedScene(int seed, int numPoints, uint64 noiseSeed)
+{
+    SyntheticScene scene = testScene(SCENE_GENERIC, seed, 0.75, 0.0, numPoints);
+    RNG rng(noiseSeed);
+    for (int i = 0; i < scene.points2.rows; ++i) {
+        if (!scene.inlierMask.at<uchar>(i))
+            continue;
+        const double sigma = rng.uniform(0.0, 1.0) < 0.25 ? 1.2 : 0.3;
+        scene.points2.at<double>(i, 0) += rng.gaussian(sigma);
+        scene.points2.at<double>(i, 1) += rng.gaussian(sigma);
+    }
+    return scene;
+}
+
 /** Hand-built two views: `inliers` correspondences of points seen by K [I | 0] and K [R | t],
 the rays through pixels drawn uniformly over the image, each at the depth depthOfRay(ray)
 gives, with Gaussian noise of `sigma` px (points behind the second camera or outside its image

@@ -15,8 +15,9 @@
 // residual degrees of freedom on the reported covariance is raised to it along the directions where
 // it exceeds the model-based one by more than its own sampling noise. Outliers that fall into the
 // band are inliers to every term above; their number is read off the points just outside the band,
-// and the excess variance of those hidden within the noise's own band is added. Measured on real
-// pairs and synthetic scenes in doc/covariance.md.
+// and the excess variance of those hidden within the noise's own band is added. A motion the final
+// polish refitted with its Cauchy loss is that M-estimator's: its own sandwich replaces least
+// squares'. Measured on real pairs and synthetic scenes in doc/covariance.md.
 
 #include "estimation/model_fit.hpp"
 #include "framework/component_factories.hpp"
@@ -82,6 +83,11 @@ struct ResidualScores
     Matrix informationInverse; //!< (J^T J)^-1 over the inliers
     Matrix scatter;            //!< sum d_i^2 / (1 - h_i)^2 g_i^T g_i over the inliers
     Matrix nearOutliers;       //!< sum g^T g over the points between kNearFrom c and kNearTo c
+    //! With a polished motion (Model::polishLossScale s), its Cauchy loss's M-estimator terms:
+    //! sum psi'(d_i) g_i^T g_i and sum psi(d_i)^2 / (1 - h_i)^2 g_i^T g_i, psi(d) = d / (1 + d^2 /
+    //! s^2); and the loss's variance factor against least squares over the same residuals.
+    Matrix robustCurvature, robustScatter;
+    double robustFactor = 1.0;
 };
 
 // The scores over the mask's points and the points near its band, at the motion the directions
@@ -123,12 +129,28 @@ bool residualScores(const TwoViewData& data, const Model& model, const std::vect
         return false;
     scores.informationInverse = ldlt.solve(Matrix::Identity());
     scores.scatter.setZero();
+    scores.robustCurvature.setZero();
+    scores.robustScatter.setZero();
+    const double s2 = model.polishLossScale * model.polishLossScale;
+    double influence2 = 0, curvature = 0, residual2 = 0;
     for (size_t i = 0; i < gradients.size(); ++i) {
         const double leverage = gradients[i] * scores.informationInverse * gradients[i].transpose();
         const double shrink = std::max(1.0 - leverage, kMinLeverageComplement);
-        scores.scatter.noalias() += (distances[i] * distances[i] / (shrink * shrink)) *
-                                    (gradients[i].transpose() * gradients[i]);
+        const Matrix outer = gradients[i].transpose() * gradients[i];
+        const double d2 = distances[i] * distances[i];
+        scores.scatter.noalias() += (d2 / (shrink * shrink)) * outer;
+        if (s2 > 0) {
+            const double w = 1.0 / (1.0 + d2 / s2);
+            scores.robustCurvature.noalias() += ((1.0 - d2 / s2) * w * w) * outer;
+            scores.robustScatter.noalias() += (d2 * w * w / (shrink * shrink)) * outer;
+            influence2 += d2 * w * w;
+            curvature += (1.0 - d2 / s2) * w * w;
+            residual2 += d2;
+        }
     }
+    const double n = static_cast<double>(gradients.size());
+    if (curvature > 0 && residual2 > 0)
+        scores.robustFactor = n * n * influence2 / (curvature * curvature * residual2);
     return true;
 }
 
@@ -161,7 +183,18 @@ public:
             // The sandwich A^-1 S A^-1 n / (n - 5) / h^2 in the fitted noise's truncation h.
             const double h = truncatedNormalVariance(data.threshold / fitted);
             const double n = static_cast<double>(count);
-            if (estimated)
+            const Eigen::LDLT<Matrix> robust(scores.robustCurvature);
+            const bool polished = model.polishLossScale > 0 && scores.robustFactor < 1.0 &&
+                                  robust.info() == Eigen::Success && robust.isPositive();
+            if (estimated && polished) {
+                // A polished motion is the loss's M-estimate: its own sandwich, and below it the
+                // model-based covariance scaled by the loss's variance factor.
+                const Matrix curvatureInverse = robust.solve(Matrix::Identity());
+                covariance = raisedToSandwich(modelBased * scores.robustFactor,
+                                              curvatureInverse * scores.robustScatter *
+                                                  curvatureInverse * (n / (n - P) / (h * h)),
+                                              n);
+            } else if (estimated)
                 covariance =
                     raisedToSandwich(modelBased,
                                      scores.informationInverse * scores.scatter *

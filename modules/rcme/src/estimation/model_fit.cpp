@@ -532,6 +532,7 @@ bool polishFinalMotionOn(const TwoViewData& data, const std::vector<int>& indice
     setFinalUncertainty(data, indices, problem, polished);
     if (!polished.uncertainty.as<MotionUncertainty>())
         return false;
+    polished.polishLossScale = lossScale;
     polished.motion->R = problem.R;
     polished.motion->t = problem.t;
     polished.E = skew(problem.t) * problem.R;

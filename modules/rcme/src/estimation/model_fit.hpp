@@ -30,7 +30,9 @@ bool fitFinalModelOn(const TwoViewData& data, ModelForm form, const std::vector<
 /** The robust polish of a final estimate with a motion: the motion refitted on the points
 `indices` with a Cauchy loss of scale `lossScale` (pixels) on their Sampson distances, so that
 the few widest residuals among the inliers weigh less than in least squares; its covariance is
-the final estimate's at the polished motion (fitFinalModelOn's formula). False (model
+the final estimate's at the polished motion (fitFinalModelOn's formula), and
+Model::polishLossScale the loss's scale, from which the reported covariance takes the polished
+motion's own sandwich (components/residual_covariance.cpp). False (model
 untouched) without a camera matrix or a motion, on fewer than 35 (30 residual degrees of freedom,
 as the noise estimate) or more than kMaxIteratedPoints
 points (two_view_data.hpp), when the loss is less precise than least squares on these residuals

@@ -90,6 +90,9 @@ struct Model
     ModelUncertainty uncertainty;
     //! Noise sigma estimated from the final inliers' residuals (Refiner::finalize), NaN if none.
     double noiseSigma = std::numeric_limits<double>::quiet_NaN();
+    //! The scale (pixels) of the Cauchy loss the final polish fitted the motion with
+    //! (polishFinalMotionOn); 0 for a least-squares fit.
+    double polishLossScale = 0.0;
 };
 
 /** Gives a model of calibrated data its motion: E (from F when the hypothesis was not
