@@ -295,13 +295,22 @@ def main(argv=None):
     ap.add_argument("--max-wrong-with-success", type=int,
                     help="exit with 1 when the default returns more wrong motions with success")
     args = ap.parse_args(argv)
+    chosen = METHODS if args.methods is None else args.methods.split(",")
+    unknown = [m for m in chosen if m not in METHODS]
+    if unknown:
+        ap.error("--methods: unknown %s (the suite's: %s)" % (", ".join(unknown), ", ".join(METHODS)))
+    try:
+        states = [int(k) for k in args.other_states.split(",") if k.strip()]
+    except ValueError:
+        ap.error("--other-states: comma-separated integers, not %r" % args.other_states)
+    if args.first_frame < 0 or (args.frames is not None and args.frames < 2):
+        ap.error("--first-frame must be >= 0 and --frames >= 2")
     cv2.setNumThreads(1)
     sequences = [s for s in load_sequences(args.data)
                  if args.sequence is None or s[0] == args.sequence]
     if not sequences:
         print("no KITTI sequence under %s" % args.data)
         return 77
-    chosen = METHODS if args.methods is None else args.methods.split(",")
     names = [m for m in chosen if m in methods.METHODS]
     inputs = args.inputs.split(",")
     frames = args.frames if args.frames is not None else (8 if args.quick else None)
@@ -310,7 +319,6 @@ def main(argv=None):
         task += vo_pairs(sequence, label, frames, inputs, args.first_frame)
     load = os.getloadavg()[0]
     rows = run(task, names, args.sigma)
-    states = [int(k) for k in args.other_states.split(",") if k.strip()]
     state_rows = (run_other_states(task, args.sigma, states)
                   if methods.DEFAULT_METHOD in names else [])
     write_report(rows, names, args.out, task, argv, args.sigma, load, state_rows)

@@ -87,7 +87,7 @@ struct ResidualScores
     //! sum psi'(d_i) g_i^T g_i and sum psi(d_i)^2 / (1 - h_i)^2 g_i^T g_i, psi(d) = d / (1 + d^2 /
     //! s^2); and the loss's variance factor against least squares over the same residuals.
     Matrix robustCurvature, robustScatter;
-    double robustFactor = 1.0;
+    double robustFactor = 1.0; //!< CauchyVarianceFactor, NaN where it does not apply
 };
 
 // The scores over the mask's points and the points near its band, at the motion the directions
@@ -132,7 +132,7 @@ bool residualScores(const TwoViewData& data, const Model& model, const std::vect
     scores.robustCurvature.setZero();
     scores.robustScatter.setZero();
     const double s2 = model.polishLossScale * model.polishLossScale;
-    double influence2 = 0, curvature = 0, residual2 = 0;
+    CauchyVarianceFactor factor(s2);
     for (size_t i = 0; i < gradients.size(); ++i) {
         const double leverage = gradients[i] * scores.informationInverse * gradients[i].transpose();
         const double shrink = std::max(1.0 - leverage, kMinLeverageComplement);
@@ -143,14 +143,10 @@ bool residualScores(const TwoViewData& data, const Model& model, const std::vect
             const double w = 1.0 / (1.0 + d2 / s2);
             scores.robustCurvature.noalias() += ((1.0 - d2 / s2) * w * w) * outer;
             scores.robustScatter.noalias() += (d2 * w * w / (shrink * shrink)) * outer;
-            influence2 += d2 * w * w;
-            curvature += (1.0 - d2 / s2) * w * w;
-            residual2 += d2;
+            factor.add(d2);
         }
     }
-    const double n = static_cast<double>(gradients.size());
-    if (curvature > 0 && residual2 > 0)
-        scores.robustFactor = n * n * influence2 / (curvature * curvature * residual2);
+    scores.robustFactor = s2 > 0 ? factor.value() : 1.0;
     return true;
 }
 

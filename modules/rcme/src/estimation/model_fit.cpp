@@ -456,36 +456,39 @@ bool fitModel(const TwoViewData& data, ModelForm form, const std::vector<int>& i
     return model.F.allFinite();
 }
 
-/* How much more the Cauchy estimate varies than least squares on the same residuals d_i (Huber's
-sandwich of an M-estimator, its scalar form): n^2 sum psi^2 / ((sum psi')^2 sum d^2), psi(d) =
-d / (1 + d^2 / s^2) the loss's influence. For Gaussian noise inside a band of 1.96 sigma it is
-1.5 at s = sigma and 2.3 at s = sigma / 2 (the polish's scale at a threshold of 1.96 sigma): the
-loss gives up precision; it falls below 1 where the residuals' tails are wider than a Gaussian's.
-NaN when the loss's curvature is not positive on the points (most of them beyond s: the polish does
-not apply). */
+// CauchyVarianceFactor (model_fit.hpp) of the Sampson distances of `indices` under F.
 double cauchyInefficiency(const TwoViewData& data, const std::vector<int>& indices,
                           const Eigen::Matrix3d& F, const CauchyLoss& loss)
 {
     CoordinateBlock block;
     double squared[kSampsonBlock];
-    double influence2 = 0, curvature = 0, residual2 = 0;
+    CauchyVarianceFactor factor(loss.scale2);
     for (size_t start = 0; start < indices.size(); start += kSampsonBlock) {
         const int count = block.gather(data, indices, start);
         sampsonDistancesSquaredOfBlock(F, block.x1, block.y1, block.x2, block.y2, count, squared);
-        for (int j = 0; j < count; ++j) {
-            const double w = loss.weight(squared[j]);
-            influence2 += squared[j] * w * w;
-            curvature += (1.0 - squared[j] / loss.scale2) * w * w;
-            residual2 += squared[j];
-        }
+        for (int j = 0; j < count; ++j)
+            factor.add(squared[j]);
     }
-    const double n = static_cast<double>(indices.size());
-    if (!(curvature > 0 && residual2 > 0))
-        return std::numeric_limits<double>::quiet_NaN();
-    return n * n * influence2 / (curvature * curvature * residual2);
+    return factor.value();
 }
 
 } // namespace
+
+void CauchyVarianceFactor::add(double squared)
+{
+    const double w = 1.0 / (1.0 + squared / scale2_);
+    influence2_ += squared * w * w;
+    curvature_ += (1.0 - squared / scale2_) * w * w;
+    residual2_ += squared;
+    count_ += 1.0;
+}
+
+double CauchyVarianceFactor::value() const
+{
+    if (!(curvature_ > 0 && residual2_ > 0))
+        return std::numeric_limits<double>::quiet_NaN();
+    return count_ * count_ * influence2_ / (curvature_ * curvature_ * residual2_);
+}
 
 // Fewest residual degrees of freedom (inliers minus the model's) for the estimated noise to
 // replace the stated sigma: from 30 on, the estimate's relative standard error is below ~15 %.

@@ -27,6 +27,24 @@ Report::covariance). */
 bool fitFinalModelOn(const TwoViewData& data, ModelForm form, const std::vector<int>& indices,
                      int maxIterations, Model& model, std::vector<int>& confirmed);
 
+/** How much more the Cauchy estimate of scale s varies than least squares on the same residuals
+d_i (Huber's sandwich of an M-estimator, its scalar form): n^2 sum psi^2 / ((sum psi')^2 sum d^2),
+psi(d) = d / (1 + d^2 / s^2) the loss's influence. For Gaussian noise inside a band of 1.96 sigma
+it is 1.5 at s = sigma and 2.3 at s = sigma / 2 (the polish's scale at a threshold of 1.96 sigma):
+the loss gives up precision; it falls below 1 where the residuals' tails are wider than a
+Gaussian's. Accumulated one squared residual at a time; NaN when the loss's curvature is not
+positive on the points (most of them beyond s: the polish does not apply). */
+class CauchyVarianceFactor
+{
+public:
+    explicit CauchyVarianceFactor(double scale2) : scale2_(scale2) {}
+    void add(double squared);
+    double value() const;
+
+private:
+    double scale2_, influence2_ = 0, curvature_ = 0, residual2_ = 0, count_ = 0;
+};
+
 /** The robust polish of a final estimate with a motion: the motion refitted on the points
 `indices` with a Cauchy loss of scale `lossScale` (pixels) on their Sampson distances, so that
 the few widest residuals among the inliers weigh less than in least squares; its covariance is
