@@ -2,8 +2,9 @@
 """Tests of the benchmark's judges (ctest rcme_benchmark_judges): the F-only judge's blindness
 test (metrics.epipole_blind), the confusion table's handling of unjudgeable runs, the given
 pairs whose rows are another pair's (datasets.rows_of_another_pair), and the covariance
-calibration's loop tests (covariance_calibration.loop_nees, loop_translation_nees), and the
-bundle adjustment that measures fountain-P11's ground-truth error (fountain_bundle_adjustment).
+calibration's loop tests (covariance_calibration.loop_nees, loop_translation_nees) and its
+medians' interval (median_interval), and the bundle adjustment that measures fountain-P11's and
+templeSR's ground-truth error (bundle_adjustment).
 
     PYTHONPATH=build/python /usr/bin/python3 samples/benchmark/test_judges.py"""
 import types
@@ -11,9 +12,9 @@ import unittest
 
 import numpy as np
 
+import bundle_adjustment as bundle
 import covariance_calibration as calibration
 import datasets
-import fountain_bundle_adjustment as bundle
 import metrics
 import report
 from methods import rcme
@@ -194,6 +195,20 @@ def _multi_view(seed, cameras=6, points=300, sigma=0.5):
     problem = bundle.Problem(cam, pt, np.zeros((len(cam), 2)), cameras, points)
     problem.uv = problem.residuals(truth)[0] + sigma * rng.standard_normal((len(cam), 2))
     return problem, truth
+
+
+class MedianInterval(unittest.TestCase):
+    def test_order_statistics_of_a_small_sample(self):
+        # n = 10: P(Binomial(10, 1/2) <= 1) = 0.011 <= 0.05 < P(<= 2) = 0.055, so x_(2) to x_(9)
+        self.assertEqual(calibration.median_interval(range(1, 11)), (2.0, 9.0))
+        self.assertIsNone(calibration.median_interval(range(4)))
+
+    def test_covers_chi_square_median_at_its_level(self):
+        rng = np.random.default_rng(3)
+        covered = [lo <= 2.366 <= hi for lo, hi in
+                   (calibration.median_interval(rng.chisquare(3, 35)) for _ in range(1000))]
+        self.assertGreaterEqual(np.mean(covered), 0.88)
+        self.assertLessEqual(np.mean(covered), 0.95)
 
 
 class BundleAdjustment(unittest.TestCase):

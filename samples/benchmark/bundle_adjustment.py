@@ -1,29 +1,31 @@
 #!/usr/bin/python3
-"""fountain-P11's ground-truth cameras against a bundle adjustment of all 11 images: how accurate
-the ground truth's relative rotations are, measured from the images without the benchmark's
-two-view estimates.
+"""A sequence's ground-truth cameras against a bundle adjustment of all its images: how accurate
+the ground truth's relative motions are, measured from the images without the benchmark's
+two-view estimates (fountain-P11's 11 images, templeSR's 16).
 
-    PYTHONPATH=build/python /usr/bin/python3 samples/benchmark/fountain_bundle_adjustment.py \
-        [--bootstrap 30] [--out doc/benchmark/fountain_bundle_adjustment.md]
+    PYTHONPATH=build/python /usr/bin/python3 samples/benchmark/bundle_adjustment.py \
+        [--sequence fountain-P11|templeSR] [--bootstrap 30] [--out FILE]
 
-SIFT as the benchmark makes it (matching.Matcher, the same cache, detection at 1536 px), matched
-between all 55 pairs of images; matches further than GATE_PX (Sampson, px) from the ground
-truth's epipolar lines are dropped (far beyond any error the ground truth could have), and the
-matches are joined into tracks (a track that meets one image twice is dropped). Each track is
-triangulated with the ground-truth cameras (K fixed, as given), observations further than
-GATE_PX from their reprojection are dropped, and then a sparse Levenberg-Marquardt over the 11
-cameras (rotation and centre) and all points, with a Huber loss, finds the optimum of the image
-evidence. Gauge: camera 0 fixed and one coordinate of camera 10's centre (the scale); relative
-rotations do not depend on it. Pure NumPy (the Schur complement over the points).
+The default --out is doc/benchmark/fountain_bundle_adjustment.md or
+doc/benchmark/templeSR_bundle_adjustment.md. SIFT as the benchmark makes it (matching.Matcher, the
+same cache, at the benchmark's image size for the sequence), matched between all pairs of images;
+matches further than GATE_PX (Sampson, px) from the ground truth's epipolar lines are dropped (far
+beyond any error the ground truth could have), and the matches are joined into tracks (a track
+that meets one image twice is dropped). Each track is triangulated with the ground-truth cameras
+(K fixed, as given), observations further than GATE_PX from their reprojection are dropped, and
+then a sparse Levenberg-Marquardt over all cameras (rotation and centre) and all points, with a
+Huber loss, finds the optimum of the image evidence. Gauge: camera 0 fixed and one coordinate of
+the last camera's centre (the scale); relative rotations do not depend on it. Pure NumPy (the
+Schur complement over the points).
 
 Reported: tracks, points, observations; reprojection RMS under the ground-truth cameras (points
 re-optimised with the cameras fixed) and under the adjusted ones, on the same observations, and
-the drop of the weighted squared residuals (chi-square with 59 degrees of freedom in noise units
-if the ground truth were exact); the adjustment's precision of each relative motion (from its
-covariance, and by a bootstrap over tracks); and the differences between the adjusted and the
-ground truth's relative motions for the benchmark's pairs, in the tangent of Report::covariance.
-Where the adjustment's precision is far below the differences, the differences estimate the
-ground truth's error."""
+the drop of the weighted squared residuals (chi-square with the free parameters' degrees of
+freedom in noise units if the ground truth were exact); the adjustment's precision of each
+relative motion (from its covariance, and by a bootstrap over tracks); and the differences
+between the adjusted and the ground truth's relative motions for the benchmark's pairs, in the
+tangent of Report::covariance. Where the adjustment's precision is far below the differences, the
+differences estimate the ground truth's error."""
 import argparse
 import os
 import sys
@@ -395,18 +397,29 @@ def adjusted(problem, gt, intrinsics, bootstrap, rng, log):
                                   for c in range(n)])
 
 
-def measure(data, cache, bootstrap, seed=0, log=print, max_side=None):
-    """The adjustments' figures; max_side: SIFT's image size for the tracks (None: the
-    benchmark's, 1536 px; 0: full size, 3072 px), the benchmark's pairs stay the benchmark's."""
-    sequence = datasets.fountain_sequence(os.path.join(data, "epfl_strecha_fountain-P11"),
-                                          "fountain-P11")
+# The sequences whose cameras it adjusts: name -> (folder under the data, loader, the default
+# report's file name under doc/benchmark).
+SEQUENCES = {
+    "fountain-P11": ("epfl_strecha_fountain-P11", datasets.fountain_sequence,
+                     "fountain_bundle_adjustment.md"),
+    "templeSR": ("middlebury_templeSparseRing", datasets.temple_sequence,
+                 "templeSR_bundle_adjustment.md"),
+}
+
+
+def measure(data, cache, bootstrap, seed=0, log=print, max_side=None, name="fountain-P11"):
+    """The adjustments' figures for the sequence `name` (SEQUENCES); max_side: SIFT's image size
+    for the tracks (None: the benchmark's, 1536 px for fountain-P11, templeSR's as they are; 0:
+    full size), the benchmark's pairs stay the benchmark's."""
+    folder, load, _ = SEQUENCES[name]
+    sequence = load(os.path.join(data, folder), name)
     matcher = matching.Matcher(cache)
     n = len(sequence.images)
     benchmark_pairs = pair_selection.select_sequence_pairs(sequence, matcher, 3, range(n - 1))[0]
     problem, gt = tracks_under_ground_truth(
         sequence, matcher, sequence.max_side if max_side is None else max_side, log)
     lengths = np.bincount(problem.pt)
-    result = dict(tracks=problem.n_points, observations=len(problem.cam),
+    result = dict(name=name, tracks=problem.n_points, observations=len(problem.cam),
                   mean_length=float(lengths.mean()), length_hist=np.bincount(lengths),
                   per_image=np.bincount(problem.cam, minlength=n), variants={}, max_side=max_side,
                   benchmark_pairs=[tuple(int(f) for f in p.name.rsplit(" ", 1)[1].split("-"))
@@ -445,17 +458,18 @@ def ground_truth_error(pairs, keys):
 
 def report(result, bootstrap):
     r = result
-    lines = ["# fountain-P11: a bundle adjustment against the ground truth\n",
-             "Generated by `samples/benchmark/fountain_bundle_adjustment.py --bootstrap %d%s`; "
-             "see doc/covariance.md (\"fountain-P11's ground truth, measured by a bundle "
-             "adjustment\").\n" % (bootstrap, "" if r["max_side"] is None else
+    n = len(r["per_image"])
+    lines = ["# %s: a bundle adjustment against the ground truth\n" % r["name"],
+             "Generated by `samples/benchmark/bundle_adjustment.py --sequence %s --bootstrap "
+             "%d%s`; see doc/covariance.md (\"The ground truth, measured by a bundle "
+             "adjustment\").\n" % (r["name"], bootstrap, "" if r["max_side"] is None else
                                    " --max-side %d" % r["max_side"]),
-             "Tracks %d (observations %d, %.2f per track; tracks by length 2, 3, ..., 11: %s); "
+             "Tracks %d (observations %d, %.2f per track; tracks by length 2, 3, ..., %d: %s); "
              "observations per image %s. Huber loss at %g px; gauge: camera 0 and one coordinate "
-             "of camera 10's centre fixed.\n" % (
-                 r["tracks"], r["observations"], r["mean_length"],
+             "of camera %d's centre fixed.\n" % (
+                 r["tracks"], r["observations"], r["mean_length"], len(r["length_hist"]) - 1,
                  ", ".join(str(v) for v in r["length_hist"][2:]),
-                 ", ".join(str(v) for v in r["per_image"]), HUBER_PX)]
+                 ", ".join(str(v) for v in r["per_image"]), HUBER_PX, n - 1)]
     fit = []
     for name, v in r["variants"].items():
         fit.append([name, "%d" % v["free"], "%.4f" % v["rms_gt"], "%.4f" % v["rms_ba"],
@@ -475,7 +489,7 @@ def report(result, bootstrap):
     for name, v in r["variants"].items():
         subsets = (("the benchmark's pairs", r["benchmark_pairs"]),
                    ("gap 1-3", [k for k in v["pairs"] if k[1] - k[0] <= 3]),
-                   ("all 55", list(v["pairs"])))
+                   ("all %d" % len(v["pairs"]), list(v["pairs"])))
         for label, keys in subsets:
             theta = np.array([v["pairs"][k]["theta"] for k in keys])
             std = np.degrees(np.sqrt(np.mean([np.diag(v["pairs"][k]["cov"]) for k in keys],
@@ -522,20 +536,23 @@ def report(result, bootstrap):
 
 
 def main():
-    ap = matching.benchmark_arguments(__doc__, REPO_ROOT, os.path.join(
-        REPO_ROOT, "doc", "benchmark", "fountain_bundle_adjustment.md"))
+    ap = matching.benchmark_arguments(__doc__, REPO_ROOT, None)
+    ap.add_argument("--sequence", choices=sorted(SEQUENCES), default="fountain-P11",
+                    help="the sequence whose cameras are adjusted")
     ap.add_argument("--bootstrap", type=int, default=30, help="bootstrap replicates over tracks")
     ap.add_argument("--max-side", type=int, default=None,
                     help="SIFT on images downscaled to this size for the tracks (default the "
-                         "benchmark's 1536 px; 0: full size)")
+                         "benchmark's: 1536 px for fountain-P11; 0: full size)")
     args = ap.parse_args()
-    if not os.path.isdir(os.path.join(args.data, "epfl_strecha_fountain-P11")):
-        print("skipped: no fountain-P11 under %s" % args.data)
+    folder, _, report_name = SEQUENCES[args.sequence]
+    out = args.out or os.path.join(REPO_ROOT, "doc", "benchmark", report_name)
+    if not os.path.isdir(os.path.join(args.data, folder)):
+        print("skipped: no %s under %s" % (args.sequence, args.data))
         return 0
     result = measure(args.data, args.cache, args.bootstrap, max_side=args.max_side,
-                     log=lambda s: sys.stderr.write(s + "\n"))
+                     log=lambda s: sys.stderr.write(s + "\n"), name=args.sequence)
     lines = report(result, args.bootstrap)
-    with open(args.out, "w") as f:
+    with open(out, "w") as f:
         f.write("\n".join(lines))
     print("\n".join(lines))
     return 0
