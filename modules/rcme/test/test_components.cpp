@@ -12,6 +12,7 @@
 #include "framework/component_factories.hpp"
 #include "framework/model_space.hpp"
 #include "framework/rival_motions.hpp"
+#include "geometry/covariance_combination.hpp"
 #include "geometry/epipolar.hpp"
 #include "geometry/motion_parameterization.hpp"
 #include "geometry/statistics.hpp"
@@ -432,6 +433,33 @@ TEST(Rcme_Statistics, posterior_noise_moves_from_the_stated_sigma_to_the_estimat
         EXPECT_LT(before - after, 1.0 / (dof + 2)) << dof;
     }
     EXPECT_NEAR(posteriorNoiseVariance(1.0, 0.3, 1000000, 4.0), 0.09, 1e-5);
+}
+
+TEST(Rcme_Statistics, sandwich_taken_only_beyond_its_noise)
+{
+    // In the model-based covariance's whitened coordinates (here it is diag(4, 1)), with 50
+    // residuals the margin is 2 sqrt(2 / 50) = 0.4: the sandwich's 2.0 along x is taken as 1.6,
+    // its 0.3 along y stays 1 unless lowering is asked for, then 0.7; within the margin nothing
+    // moves.
+    const Eigen::Matrix2d modelBased = Eigen::Vector2d(4.0, 1.0).asDiagonal();
+    const Eigen::Matrix2d sandwich = Eigen::Vector2d(8.0, 0.3).asDiagonal();
+    const Eigen::Matrix2d raised = sandwichBeyondItsNoise<2>(modelBased, sandwich, 50, false);
+    EXPECT_NEAR(raised(0, 0), 6.4, 1e-12);
+    EXPECT_NEAR(raised(1, 1), 1.0, 1e-12);
+    EXPECT_NEAR(raised(0, 1), 0.0, 1e-12);
+    const Eigen::Matrix2d both = sandwichBeyondItsNoise<2>(modelBased, sandwich, 50, true);
+    EXPECT_NEAR(both(0, 0), 6.4, 1e-12);
+    EXPECT_NEAR(both(1, 1), 0.7, 1e-12);
+    const Eigen::Matrix2d near = Eigen::Vector2d(4.0 * 1.3, 0.8).asDiagonal();
+    EXPECT_LT((sandwichBeyondItsNoise<2>(modelBased, near, 50, true) - modelBased).norm(), 1e-12);
+    // A sandwich of (negative) roundoff along a direction keeps the margin.
+    const Eigen::Matrix2d roundoff = Eigen::Vector2d(4.0, -1e-20).asDiagonal();
+    EXPECT_NEAR(sandwichBeyondItsNoise<2>(modelBased, roundoff, 50, true)(1, 1), 0.4, 1e-12);
+    // Rotated frames: the rule is applied to the whitened sandwich's eigen-directions.
+    const Eigen::Matrix2d Q = Eigen::Rotation2Dd(0.3).toRotationMatrix();
+    const Eigen::Matrix2d rotated = sandwichBeyondItsNoise<2>(
+        Q * modelBased * Q.transpose(), Q * sandwich * Q.transpose(), 50, true);
+    EXPECT_LT((rotated - Q * both * Q.transpose()).norm(), 1e-9);
 }
 
 TEST(Rcme_Statistics, log_binomial_coefficient_and_tail)
