@@ -45,10 +45,10 @@ void setMotionUncertainty(const Eigen::Matrix<double, 5, 5>& covariance, Report&
 void setEstimate(Report& report, const detail::Model& model)
 {
     report.F = toMat(model.F);
-    if (model.motion) {
-        report.E = toMat(detail::skew(model.motion->t) * model.motion->R);
-        report.R = toMat(model.motion->R);
-        report.t = toMat(model.motion->t);
+    if (model.motion()) {
+        report.E = toMat(detail::skew(model.motion()->t) * model.motion()->R);
+        report.R = toMat(model.motion()->R);
+        report.t = toMat(model.motion()->t);
         if (const auto* uncertainty = model.uncertainty.as<detail::MotionUncertainty>())
             setMotionUncertainty(uncertainty->covariance, report);
     }
@@ -61,9 +61,9 @@ void setRejected(Report& report, const detail::Model& model)
     if (!model.F.allFinite() || model.F.isZero())
         return;
     report.rejectedF = toMat(model.F);
-    if (model.motion) {
-        report.rejectedR = toMat(model.motion->R);
-        report.rejectedT = toMat(model.motion->t);
+    if (model.motion()) {
+        report.rejectedR = toMat(model.motion()->R);
+        report.rejectedT = toMat(model.motion()->t);
     }
 }
 

@@ -58,7 +58,7 @@ TEST(Rcme_EightPointSolver, exact_on_noise_free_data)
                 auto solver = createEightPointSolver(essential);
                 ASSERT_EQ(solver->estimate(data, sample, models), 1);
                 EXPECT_LT((models[0].F - trueF(scene)).norm(), 1e-6) << "seed " << seed;
-                EXPECT_EQ(models[0].E.isZero(), !(essential && calibrated));
+                EXPECT_EQ(models[0].essential().isZero(), !(essential && calibrated));
                 for (size_t i = 0; i < data.points1.size(); ++i)
                     EXPECT_LT(sampsonDistanceSquared(models[0].F, data.points1[i], data.points2[i]),
                               1e-10);
@@ -227,11 +227,12 @@ TEST(Rcme_GoldStandardRefiner, improves_a_perturbed_estimate)
         t = (t + Eigen::Vector3d(0.05, 0.05, -0.05)).normalized();
         Eigen::Matrix3d K;
         cv2eigen(scene.cameraMatrix, K);
-        model.E = skew(t) * R;
-        model.F = fundamentalFromEssential(model.E, K.inverse());
+        model.F = fundamentalFromEssential(skew(t) * R, K.inverse());
         // A motion is refined as a motion (5 DoF); otherwise the refiner works on F (7 DoF).
         if (calibrated)
-            model.motion = Motion{R, t};
+            model.form = Motion{R, t};
+        else
+            std::get<FundamentalForm>(model.form).essential = skew(t) * R;
         const std::vector<uchar> all(data.points1.size(), 1);
         auto cost = [&](const Eigen::Matrix3d& F) {
             double c = 0;
@@ -251,7 +252,7 @@ TEST(Rcme_GoldStandardRefiner, improves_a_perturbed_estimate)
         EXPECT_TRUE(calibrated ? model.uncertainty.as<MotionUncertainty>() != nullptr
                                : model.uncertainty.as<FundamentalUncertainty>() != nullptr);
         if (calibrated) {
-            EXPECT_TRUE(model.motion.has_value());
+            EXPECT_NE(model.motion(), nullptr);
         }
     }
 }
@@ -377,7 +378,7 @@ TEST(Rcme_RivalMotions, a_full_memory_considers_only_counts_above_its_least)
         motion.R = Eigen::AngleAxisd(angleDeg * CV_PI / 180.0, Eigen::Vector3d::UnitY())
                        .toRotationMatrix();
         motion.t = Eigen::Vector3d(1, 0, 0);
-        model.motion = motion;
+        model.form = motion;
         Score score;
         score.inlierCount = count;
         score.value = -count;

@@ -301,13 +301,12 @@ cv::rcme::detail::Estimate motionOff(const SyntheticScene& scene,
 {
     using namespace cv::rcme::detail;
     Estimate estimate;
-    Motion& motion = estimate.model.motion.emplace();
+    Motion motion;
     cv2eigen(scene.R, motion.R);
     cv2eigen(scene.t, motion.t);
     const Eigen::Vector3d axis = motion.t.cross(Eigen::Vector3d::UnitY()).normalized();
     motion.t = Eigen::AngleAxisd(offDeg * CV_PI / 180.0, axis) * motion.t;
-    estimate.model.E = skew(motion.t) * motion.R;
-    estimate.model.F = fundamentalFromEssential(estimate.model.E, data.Kinv);
+    setMotion(data, motion, estimate.model);
     estimate.mask.assign(data.points1.size(), 1);
     return estimate;
 }

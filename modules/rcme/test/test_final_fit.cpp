@@ -49,7 +49,7 @@ TEST(Rcme_FinalFit, returns_the_least_squares_fit_of_its_own_mask)
     data.sigma = kSigma;
     data.threshold = 1.96 * kSigma;
     Model refit;
-    Motion& motion = refit.motion.emplace();
+    Motion& motion = refit.form.emplace<Motion>();
     cv2eigen(report.R, motion.R);
     cv2eigen(report.t, motion.t);
     const Eigen::Matrix3d returnedF =

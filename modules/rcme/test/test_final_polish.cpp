@@ -38,8 +38,9 @@ Model leastSquaresFit(const SyntheticScene& scene, const TwoViewData& data,
     for (size_t i = 0; i < indices.size(); ++i)
         indices[i] = static_cast<int>(i);
     Model model;
-    cv2eigen(scene.R, model.motion.emplace().R);
-    cv2eigen(scene.t, model.motion->t);
+    Motion& motion = model.form.emplace<Motion>();
+    cv2eigen(scene.R, motion.R);
+    cv2eigen(scene.t, motion.t);
     std::vector<int> confirmed;
     EXPECT_TRUE(fitFinalModelOn(data, ModelForm::kMotion, indices, 20, model, confirmed));
     return model;
@@ -81,14 +82,14 @@ ReturnedAgainstLeastSquares returnedAgainstLeastSquares(MakeScene makeScene, int
         cv2eigen(report.R, R);
         cv2eigen(report.t, t);
         Model refit;
-        refit.motion = Motion{R, t};
+        refit.form = Motion{R, t};
         std::vector<int> indices, confirmed;
         for (int i = 0; i < report.mask.rows; ++i)
             if (report.mask.at<uchar>(i))
                 indices.push_back(i);
         EXPECT_TRUE(fitFinalModelOn(data, ModelForm::kMotion, indices, 20, refit, confirmed));
         sums.returnedError += motionError(R, t, scene);
-        sums.leastSquaresError += motionError(refit.motion->R, refit.motion->t, scene);
+        sums.leastSquaresError += motionError(refit.motion()->R, refit.motion()->t, scene);
         ++sums.runs;
     }
     return sums;
@@ -125,13 +126,13 @@ TEST(Rcme_FinalPolish, polishes_heavy_tails_and_declines_on_gaussian_noise)
         const TwoViewData data = sceneData(scene, /*calibrated=*/true);
         std::vector<int> indices;
         const Model model = leastSquaresFit(scene, data, indices);
-        leastSquaresError += motionError(model.motion->R, model.motion->t, scene);
+        leastSquaresError += motionError(model.motion()->R, model.motion()->t, scene);
         Model polished = model;
         if (polishFinalMotionOn(data, indices, 0.25 * data.threshold, 3, polished)) {
             EXPECT_NE(polished.uncertainty.as<MotionUncertainty>(), nullptr);
             EXPECT_TRUE(polished.F.allFinite());
         }
-        polishedError += motionError(polished.motion->R, polished.motion->t, scene);
+        polishedError += motionError(polished.motion()->R, polished.motion()->t, scene);
 
         const SyntheticScene plain = testScene(SCENE_GENERIC, seed, 1.0, 1.0, 200);
         const TwoViewData plainData = sceneData(plain, /*calibrated=*/true);
@@ -140,7 +141,7 @@ TEST(Rcme_FinalPolish, polishes_heavy_tails_and_declines_on_gaussian_noise)
         Model untouched = fitted;
         if (!polishFinalMotionOn(plainData, all, 0.25 * plainData.threshold, 3, untouched)) {
             ++declinedOnGaussian;
-            EXPECT_EQ(untouched.motion->R, fitted.motion->R);
+            EXPECT_EQ(untouched.motion()->R, fitted.motion()->R);
         }
     }
     EXPECT_LT(polishedError, 0.9 * leastSquaresError)
@@ -167,7 +168,7 @@ TEST(Rcme_FinalPolish, leaves_fewer_than_35_points_to_least_squares)
         indices.resize(34);
         Model few = model;
         EXPECT_FALSE(polishFinalMotionOn(data, indices, 0.25 * data.threshold, 3, few)) << seed;
-        EXPECT_EQ(few.motion->R, model.motion->R);
+        EXPECT_EQ(few.motion()->R, model.motion()->R);
     }
     EXPECT_GE(polishedWhole, 10);
 }

@@ -116,13 +116,13 @@ TEST(Rcme_FivePointSolver, exact_on_noise_free_data)
             double best = std::numeric_limits<double>::infinity();
             const Model* truth = nullptr;
             for (const Model& model : models) {
-                ASSERT_TRUE(model.E.allFinite());
+                ASSERT_TRUE(model.essential().allFinite());
                 ASSERT_TRUE(model.F.allFinite());
-                EXPECT_NEAR(model.E.norm(), 1.0, 1e-12);
+                EXPECT_NEAR(model.essential().norm(), 1.0, 1e-12);
                 EXPECT_NEAR(model.F.norm(), 1.0, 1e-12);
                 // Singular values (s, s, 0).
                 const Eigen::Vector3d sv =
-                    Eigen::JacobiSVD<Eigen::Matrix3d>(model.E).singularValues();
+                    Eigen::JacobiSVD<Eigen::Matrix3d>(model.essential()).singularValues();
                 worstEqual = std::max(worstEqual, (sv(0) - sv(1)) / sv(0));
                 worstZero = std::max(worstZero, sv(2) / sv(0));
                 EXPECT_LT((sv(0) - sv(1)) / sv(0), 1e-10) << "seed " << seed;
@@ -135,9 +135,10 @@ TEST(Rcme_FivePointSolver, exact_on_noise_free_data)
                     EXPECT_LT(d2, 1e-12) << "seed " << seed;
                 }
                 // F and E describe the same geometry.
-                EXPECT_LT(distanceUpToSign(model.F, fundamentalFromEssential(model.E, data.Kinv)),
+                EXPECT_LT(distanceUpToSign(model.F,
+                                           fundamentalFromEssential(model.essential(), data.Kinv)),
                           1e-12);
-                const double distance = distanceUpToSign(model.E, Etrue);
+                const double distance = distanceUpToSign(model.essential(), Etrue);
                 if (distance < best) {
                     best = distance;
                     truth = &model;
@@ -178,7 +179,7 @@ int noisyErrors(MinimalSolver& solver, std::vector<double>& medians, std::vector
             double median = std::numeric_limits<double>::infinity(), distance = median;
             for (const Model& model : models) {
                 median = std::min(median, medianSampsonDistance(data, model.F));
-                distance = std::min(distance, distanceUpToSign(model.E, Etrue));
+                distance = std::min(distance, distanceUpToSign(model.essential(), Etrue));
             }
             medians.push_back(median);
             distances.push_back(distance);
@@ -267,9 +268,9 @@ TEST(Rcme_FivePointSolver, degenerate_samples_give_no_or_finite_models)
         rejected[level] += count == 0;
         for (const Model& model : models) {
             ASSERT_TRUE(model.F.allFinite());
-            ASSERT_TRUE(model.E.allFinite());
+            ASSERT_TRUE(model.essential().allFinite());
             EXPECT_NEAR(model.F.norm(), 1.0, 1e-9);
-            EXPECT_NEAR(model.E.norm(), 1.0, 1e-9);
+            EXPECT_NEAR(model.essential().norm(), 1.0, 1e-9);
         }
     }
     std::cout << "four collinear + one, no model: " << rejected[0] << " of 100 (noise 0), "
@@ -288,7 +289,7 @@ TEST(Rcme_FivePointSolver, degenerate_samples_give_no_or_finite_models)
         ASSERT_LE(count, 10);
         for (const Model& model : models) {
             ASSERT_TRUE(model.F.allFinite());
-            ASSERT_TRUE(model.E.allFinite());
+            ASSERT_TRUE(model.essential().allFinite());
         }
     }
 }

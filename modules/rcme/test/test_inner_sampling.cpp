@@ -39,11 +39,11 @@ Estimation runLoop(const SyntheticScene& scene, int seed, int innerSamples = -1,
 bool loopSelectsTheTrueMotion(const SyntheticScene& scene, int seed, int innerSamples = -1)
 {
     const Estimate result = runLoop(scene, seed, innerSamples).estimate;
-    if (!result.model.motion || result.model.motion->t.isZero())
+    if (!result.model.motion() || result.model.motion()->t.isZero())
         return false;
     Mat R, t;
-    eigen2cv(result.model.motion->R, R);
-    eigen2cv(Eigen::Vector3d(result.model.motion->t), t);
+    eigen2cv(result.model.motion()->R, R);
+    eigen2cv(Eigen::Vector3d(result.model.motion()->t), t);
     const MotionError error = compareMotion(R, t, scene.R, scene.t);
     return error.rotationDeg <= 5 && error.translationDeg <= 15; // issue 15's "right"
 }

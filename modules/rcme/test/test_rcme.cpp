@@ -167,9 +167,7 @@ Model trueMotion(const SyntheticScene& s, const TwoViewData& data)
     Motion motion;
     cv2eigen(s.R, motion.R);
     cv2eigen(s.t, motion.t);
-    model.motion = motion;
-    model.E = skew(motion.t) * motion.R;
-    model.F = fundamentalFromEssential(model.E, data.Kinv);
+    setMotion(data, motion, model);
     return model;
 }
 
@@ -268,7 +266,7 @@ TEST(Rcme_Boxes, propagated_covariance_matches_monte_carlo)
     const Eigen::Matrix<double, 5, 5> predicted =
         atTruth.uncertainty.as<MotionUncertainty>()->covariance;
 
-    const MotionTangent tangent(atTruth.motion->R, atTruth.motion->t);
+    const MotionTangent tangent(atTruth.motion()->R, atTruth.motion()->t);
     RNG rng(7);
     std::vector<Eigen::Matrix<double, 5, 1>> thetas;
     for (int trial = 0; trial < 400; ++trial) {
@@ -283,10 +281,10 @@ TEST(Rcme_Boxes, propagated_covariance_matches_monte_carlo)
         if (!fitModelOn(noisy, ModelForm::kMotion, sample, 20, fitted))
             continue;
         // The estimate in the tangent space at the truth.
-        const Eigen::AngleAxisd delta(atTruth.motion->R.transpose() * fitted.motion->R);
+        const Eigen::AngleAxisd delta(atTruth.motion()->R.transpose() * fitted.motion()->R);
         Eigen::Matrix<double, 5, 1> theta;
         theta.head<3>() = delta.angle() * delta.axis();
-        theta.tail<2>() = tangent.B.transpose() * fitted.motion->t;
+        theta.tail<2>() = tangent.B.transpose() * fitted.motion()->t;
         thetas.push_back(theta);
     }
     ASSERT_GT(thetas.size(), 380u);
@@ -317,10 +315,9 @@ TEST(Rcme_Boxes, propagated_covariance_matches_monte_carlo)
 Model wrongMotion(const Model& truth, const TwoViewData& data)
 {
     Model bad = truth;
-    Motion& motion = *bad.motion;
+    Motion motion = *bad.motion();
     motion.R = motion.R * rotationExp(Eigen::Vector3d(0.2, -0.15, 0.1));
-    bad.E = skew(motion.t) * motion.R;
-    bad.F = fundamentalFromEssential(bad.E, data.Kinv);
+    setMotion(data, motion, bad);
     return bad;
 }
 
@@ -352,7 +349,7 @@ TEST(Rcme_Boxes, propagated_variances_of_a_block_equal_those_of_one_point)
         TwoViewData data = sceneData(s, calibrated, false);
         Model model = trueMotion(s, sceneData(s, true, false));
         if (!calibrated)
-            model.motion.reset();
+            model.form = FundamentalForm{model.essential()};
         std::vector<int> inliers;
         for (int i = 0; i < 40; ++i)
             inliers.push_back(i);

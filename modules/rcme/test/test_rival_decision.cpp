@@ -47,7 +47,7 @@ TEST(Rcme_RivalMotionDecision, leaves_out_only_rivals_that_stay_far_once_refitte
             EstimatorComponents components = createEstimator(params, data);
             const Estimation result = estimateModel(data, components);
             const Estimate& estimate = result.estimate;
-            if (!estimate.model.motion || estimate.weighedMotions.empty())
+            if (!estimate.model.motion() || estimate.weighedMotions.empty())
                 continue; // the decision did not run (no motion, or a planar scene's motion)
             ++weighedRuns;
             const double returned = truncatedCost(data, estimate.model.F);

@@ -106,7 +106,7 @@ TEST(Rcme_SevenPointSolver, exact_on_noise_free_data)
                 const Model* truth = nullptr;
                 for (const Model& model : models) {
                     EXPECT_NEAR(model.F.norm(), 1.0, 1e-12);
-                    EXPECT_EQ(model.E.isZero(), !isEssential);
+                    EXPECT_EQ(model.essential().isZero(), !isEssential);
                     const double distance = distanceUpToSign(model.F, Ftrue);
                     if (distance < best) {
                         best = distance;
@@ -251,7 +251,7 @@ TEST(Rcme_SevenPointSolver, degenerate_samples_give_no_or_finite_models)
             degenerate[level] += count == 0;
             for (const Model& model : models) {
                 ASSERT_TRUE(model.F.allFinite());
-                ASSERT_TRUE(model.E.allFinite());
+                ASSERT_TRUE(model.essential().allFinite());
                 EXPECT_NEAR(model.F.norm(), 1.0, 1e-9);
             }
         }

@@ -119,7 +119,7 @@ public:
     {
         const TwoViewData& data = context.data;
         const Model& model = estimate.model;
-        if (!model.motion || data.size() <= kMotionSamplePoints)
+        if (!model.motion() || data.size() <= kMotionSamplePoints)
             return {};
         const double logLevel = std::log(kLevel);
         // the points in the motion's band, as the random pairings are counted (the final fit's
@@ -144,7 +144,7 @@ public:
                 model);
         if (!testsTranslation_)
             return {};
-        const TranslationSupport moving = translationSupport(data, *model.motion, band);
+        const TranslationSupport moving = translationSupport(data, *model.motion(), band);
         // P(chance aligns this many moving points with one of their C(m, 2) translations)
         const double translationChance =
             moving.moving < kTranslationSamplePoints

@@ -84,21 +84,22 @@ public:
         const int count = problem_.solve(x1, x2, solutions);
         for (int s = 0; s < count; ++s) {
             Model model;
+            Eigen::Matrix3d& E = std::get<FundamentalForm>(model.form).essential;
             if (problem_.essential) {
                 if (!admitsCommonCheirality(solutions[s], x1, x2, m))
                     continue;
-                model.E = normalizeFundamental(solutions[s]);
-                model.F = fundamentalFromEssential(model.E, data.Kinv);
+                E = normalizeFundamental(solutions[s]);
+                model.F = fundamentalFromEssential(E, data.Kinv);
             } else if (data.calibrated && essentialHypotheses_) {
-                model.E = essentialFromFundamental(T2.transpose() * solutions[s] * T1, data.K);
-                model.F = fundamentalFromEssential(model.E, data.Kinv);
+                E = essentialFromFundamental(T2.transpose() * solutions[s] * T1, data.K);
+                model.F = fundamentalFromEssential(E, data.Kinv);
             } else {
                 const Eigen::Matrix3d Fn =
                     problem_.enforceRankTwo ? closestRankTwo(solutions[s]) : solutions[s];
                 model.F = normalizeFundamental(T2.transpose() * Fn * T1);
             }
-            if (!model.F.allFinite() || !model.E.allFinite() ||
-                (problem_.essential && isRepeated(model.E, models)))
+            if (!model.F.allFinite() || !E.allFinite() ||
+                (problem_.essential && isRepeated(E, models)))
                 continue;
             models.push_back(model);
         }
@@ -111,7 +112,7 @@ private:
     static bool isRepeated(const Eigen::Matrix3d& E, const std::vector<Model>& models)
     {
         for (const Model& other : models)
-            if ((other.E - E).norm() < 1e-12)
+            if ((other.essential() - E).norm() < 1e-12)
                 return true;
         return false;
     }

@@ -39,7 +39,7 @@ public:
     StageOutcome run(const StageContext& context, const Estimate& estimate) override
     {
         const TwoViewData& data = context.data;
-        if (!estimate.model.motion || !estimate.model.uncertainty.as<MotionUncertainty>())
+        if (!estimate.model.motion() || !estimate.model.uncertainty.as<MotionUncertainty>())
             return {};
         std::vector<int> indices;
         maskIndices(estimate.mask, indices);
@@ -59,10 +59,11 @@ public:
         // on a highway's consecutive frames most inliers are that far (KITTI 01: 30-55 % of the
         // inliers in front before the polish), which turned every polish down there
         // (doc/vo_front_end.md, "Where the accuracy goes on KITTI 01 ORB").
-        const int inFront = countPointsInFront(polished.motion->R, polished.motion->t, data.points1,
-                                               data.points2, data.Kinv, &inliers, nullptr);
+        const int inFront =
+            countPointsInFront(polished.motion()->R, polished.motion()->t, data.points1,
+                               data.points2, data.Kinv, &inliers, nullptr);
         const int estimateInFront =
-            countPointsInFront(estimate.model.motion->R, estimate.model.motion->t, data.points1,
+            countPointsInFront(estimate.model.motion()->R, estimate.model.motion()->t, data.points1,
                                data.points2, data.Kinv, &estimate.mask, nullptr);
         if (inFront < 2 * MotionTangent::kDof || 2 * inFront < estimateInFront)
             return {};

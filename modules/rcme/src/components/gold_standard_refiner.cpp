@@ -101,7 +101,7 @@ private:
                   bool firstFit)
     {
         const std::vector<uchar>* chosen = &selection;
-        if (model.motion) {
+        if (model.motion()) {
             // An inlier whose point triangulates behind a camera is no correspondence of this
             // motion but an outlier that fell into its band by chance. Such points lie near the
             // epipoles or at extreme depths, where one of them outweighs dozens of true ones:
@@ -109,9 +109,9 @@ private:
             // Far points are kept (no distance bound): only a negative depth says "outlier".
             // When that would drop most inliers, their depths are not determined (rays nearly
             // parallel: a pure rotation) and cheirality says nothing about them.
-            const int inFront = countPointsInFront(model.motion->R, model.motion->t, data.points1,
-                                                   data.points2, data.Kinv, &selection, &inFront_,
-                                                   std::numeric_limits<double>::infinity());
+            const int inFront = countPointsInFront(
+                model.motion()->R, model.motion()->t, data.points1, data.points2, data.Kinv,
+                &selection, &inFront_, std::numeric_limits<double>::infinity());
             if (2 * inFront >= static_cast<int>(std::count(selection.begin(), selection.end(), 1)))
                 chosen = &inFront_;
         }
@@ -128,9 +128,10 @@ private:
         // fit and covariance"). After a first final fit, the previous fit stands whole, its motion
         // with the mask and covariance it was fitted with: this fit's mask and covariance with the
         // previous motion left it off its mask's least-squares minimum.
-        if (model.motion && 2 * countPointsInFront(fitted.motion->R, fitted.motion->t, data.points1,
-                                                   data.points2, data.Kinv, &selection, nullptr) <
-                                static_cast<int>(inliers_.size())) {
+        if (model.motion() &&
+            2 * countPointsInFront(fitted.motion()->R, fitted.motion()->t, data.points1,
+                                   data.points2, data.Kinv, &selection, nullptr) <
+                static_cast<int>(inliers_.size())) {
             if (!firstFit)
                 return false;
             fitted = model;

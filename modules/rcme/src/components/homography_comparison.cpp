@@ -445,9 +445,7 @@ std::vector<Model> homographyMotions(const TwoViewData& data, const Eigen::Matri
             continue; // a rotation alone: no motion direction to start from
         motion.t.normalize();
         Model m;
-        m.motion = motion;
-        m.E = skew(motion.t) * motion.R;
-        m.F = fundamentalFromEssential(m.E, data.Kinv);
+        setMotion(data, motion, m);
         motions.push_back(m);
     }
     return motions;

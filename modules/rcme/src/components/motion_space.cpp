@@ -38,10 +38,11 @@ constexpr double kAmbiguousCostGap = 10.0;
 bool decideMotionOnInliers(const TwoViewData& data, Scorer& scorer, Fit& fit)
 {
     Model& model = fit.model;
-    const Motion before = *model.motion;
+    const Motion before = *model.motion();
     if (!recoverMotion(data, fit.inliers, model))
         return false;
-    if ((model.motion->R - before.R).norm() < 1e-9 && (model.motion->t - before.t).norm() < 1e-9)
+    if ((model.motion()->R - before.R).norm() < 1e-9 &&
+        (model.motion()->t - before.t).norm() < 1e-9)
         return true;
     if (model.uncertainty.isKnown()) {
         std::vector<int> inliers;
@@ -118,30 +119,31 @@ public:
                         std::vector<Eigen::Vector2d>& points1,
                         std::vector<Eigen::Vector2d>& points2) const override
     {
-        return model.motion || recoverMotionFromSample(data, sample, model, points1, points2);
+        return model.motion() || recoverMotionFromSample(data, sample, model, points1, points2);
     }
 
     // A hypothesis of an F solver, and the selected model until settleSelected lifts it, is still
     // an F (local optimisation and the first rounds of refinement fit it as one).
     ModelForm formOf(const Model& model) const override
     {
-        return model.motion ? ModelForm::kMotion : ModelForm::kFundamental;
+        return model.motion() ? ModelForm::kMotion : ModelForm::kFundamental;
     }
 
     bool liftOn(const TwoViewData& data, const std::vector<uchar>& inliers, Model& model,
                 bool redecide) const override
     {
-        return (model.motion && !redecide) || recoverMotion(data, inliers, model);
+        return (model.motion() && !redecide) || recoverMotion(data, inliers, model);
     }
 
     std::optional<Verdict> settleSelected(const TwoViewData& data, const Refinement& refinement,
                                           Scorer& scorer, Fit& selected) const override
     {
-        if (!selected.model.motion) {
-            // The hypothesis becomes a motion: its essential matrix (Model::E, which the refinement
-            // as F leaves as it was) decomposed with cheirality on the inliers of the refined F,
-            // then refined in motion space. The inliers F gathers decide the decomposition and
-            // where the motion's refinement starts (doc/performance.md, third pass).
+        if (!selected.model.motion()) {
+            // The hypothesis becomes a motion: its essential matrix (FundamentalForm::essential,
+            // which the refinement as F leaves as it was) decomposed with cheirality on the inliers
+            // of the refined F, then refined in motion space. The inliers F gathers decide the
+            // decomposition and where the motion's refinement starts (doc/performance.md, third
+            // pass).
             if (!recoverMotion(data, selected.inliers, selected.model))
                 return Verdict{STATUS_DEGENERATE_CONFIGURATION, kNoCheirality, selected.model};
             refinement.refineNewForm(data, selected);
@@ -181,7 +183,7 @@ public:
         StageOutcome outcome;
         std::vector<uchar>& inFront = outcome.inFront.emplace();
         if (estimate.status == STATUS_SUCCESS &&
-            countPointsInFront(estimate.model.motion->R, estimate.model.motion->t, data.points1,
+            countPointsInFront(estimate.model.motion()->R, estimate.model.motion()->t, data.points1,
                                data.points2, data.Kinv, &estimate.mask, &inFront) == 0) {
             outcome.verdict =
                 Verdict{STATUS_DEGENERATE_CONFIGURATION, kNoCheirality, estimate.model};

@@ -34,8 +34,8 @@ MotionSupport motionSupport(const TwoViewData& data, const Model& model, std::ve
     const double thresholdSquared = data.threshold * data.threshold;
     const std::vector<double> distancesSquared = markWithinBand(data, model.F, within);
     MotionSupport fit;
-    fit.support = countPointsInFront(model.motion->R, model.motion->t, data.points1, data.points2,
-                                     data.Kinv, &within, &inFront);
+    fit.support = countPointsInFront(model.motion()->R, model.motion()->t, data.points1,
+                                     data.points2, data.Kinv, &within, &inFront);
     fit.cost = 0.0;
     for (size_t i = 0; i < within.size(); ++i)
         fit.cost += inFront[i] ? distancesSquared[i] : thresholdSquared;

@@ -77,7 +77,7 @@ bool residualScores(const TwoViewData& data, const Model& model, const std::vect
 {
     // The Sampson distances' gradients (F in the scale of its derivatives, not Model::F).
     const Eigen::Matrix3d F =
-        data.Kinv.transpose() * skew(model.motion->t) * model.motion->R * data.Kinv;
+        data.Kinv.transpose() * skew(model.motion()->t) * model.motion()->R * data.Kinv;
     const double nearFrom = kNearFrom * kNearFrom * data.threshold * data.threshold,
                  nearTo = kNearTo * kNearTo * data.threshold * data.threshold;
     std::vector<Eigen::Matrix<double, 1, P>> gradients;
@@ -141,7 +141,7 @@ public:
             std::count(estimate.mask.begin(), estimate.mask.end(), static_cast<uchar>(1)));
         const int dof = count - P;
         const MotionUncertainty* uncertainty = model.uncertainty.as<MotionUncertainty>();
-        if (!uncertainty || !model.motion || !data.useEstimatedNoise || dof < 1 ||
+        if (!uncertainty || !model.motion() || !data.useEstimatedNoise || dof < 1 ||
             !std::isfinite(model.noiseSigma))
             return {};
         const bool estimated = usesEstimatedNoise(data, model.noiseSigma, dof);

@@ -55,7 +55,7 @@ public:
     StageOutcome run(const StageContext& context, const Estimate& estimate) override
     {
         const TwoViewData& data = context.data;
-        if (!estimate.model.motion || estimate.planar)
+        if (!estimate.model.motion() || estimate.planar)
             return {};
         // The cost is MSAC's, without the planar test's cheirality term: the depth sign of far
         // points flips with the noise, and counting them as outliers handed small-baseline

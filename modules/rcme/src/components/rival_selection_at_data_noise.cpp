@@ -174,7 +174,7 @@ public:
     {
         const TwoViewData& data = context.data;
         const double measured = estimate.model.noiseSigma;
-        if (!estimate.model.motion || !(measured > 0.0) || measured >= data.sigma)
+        if (!estimate.model.motion() || !(measured > 0.0) || measured >= data.sigma)
             return {};
         const double cap = data.threshold * measured / data.sigma;
         const double capSquared = cap * cap;

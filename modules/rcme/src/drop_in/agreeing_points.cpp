@@ -55,8 +55,8 @@ double costWhenAllAgree(const TwoViewData& data, Model& model)
     const std::vector<uchar> all(static_cast<size_t>(data.size()), 1);
     if (data.calibrated &&
         (!recoverMotion(data, all, model) ||
-         countPointsInFront(model.motion->R, model.motion->t, data.points1, data.points2, data.Kinv,
-                            nullptr, nullptr, kNone) < data.size()))
+         countPointsInFront(model.motion()->R, model.motion()->t, data.points1, data.points2,
+                            data.Kinv, nullptr, nullptr, kNone) < data.size()))
         return kNone;
     double cost = 0;
     for (size_t i = 0; i < data.points1.size(); ++i) {
@@ -71,7 +71,8 @@ double costWhenAllAgree(const TwoViewData& data, Model& model)
 // The model's matrix as the drop-in returns it: E with unit Frobenius norm, or F.
 Mat modelMatrix(const TwoViewData& data, const Model& model)
 {
-    return toMat(data.calibrated ? Eigen::Matrix3d(model.E / model.E.norm()) : model.F);
+    const Eigen::Matrix3d E = model.essential();
+    return toMat(data.calibrated ? Eigen::Matrix3d(E / E.norm()) : model.F);
 }
 
 } // namespace

@@ -432,16 +432,13 @@ bool fitModel(const TwoViewData& data, ModelForm form, const std::vector<int>& i
               std::vector<int>* confirmed = nullptr)
 {
     if (form == ModelForm::kMotion) {
-        CV_Assert(data.calibrated && model.motion);
+        CV_Assert(data.calibrated && model.motion());
         if (indices.size() < static_cast<size_t>(MotionProblem::kDof))
             return false;
-        Motion& motion = *model.motion;
+        const Motion& motion = *model.motion();
         MotionProblem problem{data.Kinv, motion.R, motion.t, motion.R, motion.t};
         fitProblem(data, indices, maxIterations, uncertainty, problem, model, confirmed);
-        motion.R = problem.R;
-        motion.t = problem.t;
-        model.E = skew(motion.t) * motion.R;
-        model.F = fundamentalFromEssential(model.E, data.Kinv);
+        setMotion(data, Motion{problem.R, problem.t}, model);
         return model.F.allFinite();
     }
     // A 7-DoF F needs 7 constraints (a 7-point sample determines it exactly).
@@ -521,11 +518,12 @@ bool polishFinalMotionOn(const TwoViewData& data, const std::vector<int>& indice
     // The loss's precision against least squares is judged from the residuals' moments, which
     // need the residual degrees of freedom the noise estimate needs (13 points: a noisy ratio
     // that kept a polish 2 deg off where least squares was within 1, the OpenCV parity test).
-    if (!data.calibrated || !model.motion || static_cast<int>(indices.size()) - P < kMinNoiseDof ||
+    if (!data.calibrated || !model.motion() ||
+        static_cast<int>(indices.size()) - P < kMinNoiseDof ||
         indices.size() > kMaxIteratedPoints || !(lossScale > 0))
         return false;
     const CauchyLoss loss{lossScale * lossScale};
-    Motion& motion = *model.motion;
+    const Motion& motion = *model.motion();
     MotionProblem problem{data.Kinv, motion.R, motion.t, motion.R, motion.t};
     levenbergMarquardt(data, indices, problem, maxIterations, loss);
     const double inefficiency = cauchyInefficiency(data, indices, problem.current(), loss);
@@ -536,10 +534,7 @@ bool polishFinalMotionOn(const TwoViewData& data, const std::vector<int>& indice
     if (!polished.uncertainty.as<MotionUncertainty>())
         return false;
     polished.polishLossScale = lossScale;
-    polished.motion->R = problem.R;
-    polished.motion->t = problem.t;
-    polished.E = skew(problem.t) * problem.R;
-    polished.F = fundamentalFromEssential(polished.E, data.Kinv);
+    setMotion(data, Motion{problem.R, problem.t}, polished);
     if (!polished.F.allFinite())
         return false;
     model = polished;

@@ -35,8 +35,9 @@ std::unique_ptr<Refiner> createGoldStandardRefiner(int maxIterations,
 //! `essentialHypotheses` is set, like the 8-point solver.
 std::unique_ptr<MinimalSolver> createSevenPointSolver(bool essentialHypotheses);
 //! 5-point solver for E (Nister 2004, solvers/essential_five_point.cpp; calibrated data only):
-//! up to ten essential matrices per sample, exact (5 parameters for 5 DoF), returned with model.E
-//! and model.F set; those that cannot put the whole sample in front of both cameras are dropped.
+//! up to ten essential matrices per sample, exact (5 parameters for 5 DoF), returned as F with
+//! their essential matrix (FundamentalForm::essential); those that cannot put the whole sample in
+//! front of both cameras are dropped.
 std::unique_ptr<MinimalSolver> createFivePointSolver();
 //! MLESAC's scorer (Torr & Zisserman 2000): negative log-likelihood of a Gaussian-inlier,
 //! uniform-outlier mixture of the Sampson distances, mixing weight by a few EM steps.

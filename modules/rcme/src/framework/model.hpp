@@ -10,7 +10,6 @@
 #include "framework/two_view_data.hpp"
 #include "geometry/motion_parameterization.hpp"
 
-#include <optional>
 #include <variant>
 
 namespace cv {
@@ -74,17 +73,22 @@ private:
     std::variant<std::monostate, MotionUncertainty, FundamentalUncertainty> value_;
 };
 
+/** A model that is its fundamental matrix (refined as F). With a camera matrix, `essential` is the
+essential matrix of the hypothesis it came from: F = K^-T E K^-1 up to scale until the model is
+refined as F, which leaves E as the solver gave it, and the motion is decomposed from it. Zero
+otherwise (a motion then comes from the E closest to F). */
+struct FundamentalForm
+{
+    Eigen::Matrix3d essential = Eigen::Matrix3d::Zero();
+};
+
 //! One hypothesis (and, after selection, the estimate).
 struct Model
 {
     Eigen::Matrix3d F = Eigen::Matrix3d::Zero(); //!< pixel fundamental matrix, ||F|| = 1
-    //! Set when the hypothesis is an essential matrix (calibrated data): F = K^-T E K^-1 up to
-    //! scale until the model is refined as F, which leaves E as the solver gave it (the motion
-    //! is decomposed from it). Otherwise zero (a motion then comes from the E closest to F).
-    Eigen::Matrix3d E = Eigen::Matrix3d::Zero();
-    //! With K, once the decomposition of E is decided: the model is this motion (E, F follow from
-    //! it), refined as a motion; without it the model is F, refined as F.
-    std::optional<Motion> motion;
+    //! What the model is: a fundamental matrix, or, with K once the decomposition of E is
+    //! decided, a camera motion (refined as a motion; F follows from it, setMotion).
+    std::variant<FundamentalForm, Motion> form;
     //! First-order uncertainty of the model, in the parameters it is refined in (none until a
     //! fit gives it).
     ModelUncertainty uncertainty;
@@ -93,7 +97,17 @@ struct Model
     //! The scale (pixels) of the Cauchy loss the final polish fitted the motion with
     //! (polishFinalMotionOn); 0 for a least-squares fit.
     double polishLossScale = 0.0;
+
+    //! The motion the model is; null while it is a fundamental matrix.
+    const Motion* motion() const { return std::get_if<Motion>(&form); }
+    Motion* motion() { return std::get_if<Motion>(&form); }
+    //! Its essential matrix: the motion's [t]x R, or the hypothesis' (zero when it has none).
+    Eigen::Matrix3d essential() const;
 };
+
+/** Makes `model` the motion (R, t), its F = K^-T [t]x R K^-1; F is not finite where the motion is
+not (a fit that diverged). */
+void setMotion(const TwoViewData& data, const Motion& motion, Model& model);
 
 /** Gives a model of calibrated data its motion: E (from F when the hypothesis was not
 essential) is decomposed with cheirality on `inliers`, and E, F are set from (R, t). False when
@@ -108,7 +122,8 @@ bool recoverMotionFromSample(const TwoViewData& data, const std::vector<int>& sa
 
 /** Whether two motions are different answers: their rotations differ by more than 5 deg or their
 translation directions by more than 15 deg, the accuracy a right motion is held to
-(doc/results.md). Both models must have their motion. */
+(doc/results.md). A model without a motion (a selection whose E no decomposition puts the inliers
+in front of) differs from every motion. */
 bool areDistinctMotions(const Model& a, const Model& b);
 
 //! Quality of a hypothesis as a scorer sees it; lower value is better.

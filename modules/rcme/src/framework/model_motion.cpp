@@ -17,19 +17,20 @@ bool setMotionByCheirality(const TwoViewData& data, const std::vector<Eigen::Vec
                            const std::vector<uchar>* selection, Model& model)
 {
     CV_Assert(data.calibrated);
+    const Eigen::Matrix3d hypothesis = model.essential();
     const Eigen::Matrix3d E =
-        model.E.isZero() ? essentialFromFundamental(model.F, data.K) : model.E;
+        hypothesis.isZero() ? essentialFromFundamental(model.F, data.K) : hypothesis;
     // A motion the decomposition fails on keeps what it tried last (the rejected model's).
-    Motion decomposed = model.motion.value_or(Motion());
+    Motion decomposed = model.motion() ? *model.motion() : Motion();
     const int inFront = recoverMotionFromEssential(E, points1, points2, data.Kinv, selection,
                                                    decomposed.R, decomposed.t);
-    if (inFront <= 0 && !model.motion)
+    if (inFront <= 0 && !model.motion())
         return false;
-    model.motion = decomposed;
-    if (inFront <= 0)
+    if (inFront <= 0) {
+        *model.motion() = decomposed;
         return false;
-    model.E = skew(decomposed.t) * decomposed.R;
-    model.F = fundamentalFromEssential(model.E, data.Kinv);
+    }
+    setMotion(data, decomposed, model);
     return true;
 }
 
@@ -45,6 +46,19 @@ double directionAngleDeg(const Eigen::Vector3d& a, const Eigen::Vector3d& b)
 }
 
 } // namespace
+
+Eigen::Matrix3d Model::essential() const
+{
+    if (const Motion* m = motion())
+        return skew(m->t) * m->R;
+    return std::get<FundamentalForm>(form).essential;
+}
+
+void setMotion(const TwoViewData& data, const Motion& motion, Model& model)
+{
+    model.form = motion;
+    model.F = fundamentalFromEssential(skew(motion.t) * motion.R, data.Kinv);
+}
 
 bool recoverMotion(const TwoViewData& data, const std::vector<uchar>& inliers, Model& model)
 {
@@ -67,8 +81,10 @@ bool recoverMotionFromSample(const TwoViewData& data, const std::vector<int>& sa
 bool areDistinctMotions(const Model& a, const Model& b)
 {
     constexpr double kDistinctRotationDeg = 5.0, kDistinctTranslationDeg = 15.0;
-    return rotationAngleDeg(a.motion->R, b.motion->R) > kDistinctRotationDeg ||
-           directionAngleDeg(a.motion->t, b.motion->t) > kDistinctTranslationDeg;
+    if (!a.motion() || !b.motion())
+        return true;
+    return rotationAngleDeg(a.motion()->R, b.motion()->R) > kDistinctRotationDeg ||
+           directionAngleDeg(a.motion()->t, b.motion()->t) > kDistinctTranslationDeg;
 }
 
 } // namespace detail

@@ -54,7 +54,7 @@ void RivalMotions::offer(const TwoViewData& data, const std::vector<int>& sample
     if (rivals_.size() == capacity_ && !score.isBetterThan(rivals_[worstIndex()].score))
         return;
     Model motion = model;
-    if (!motion.motion &&
+    if (!motion.motion() &&
         !recoverMotionFromSample(data, sample, motion, samplePoints1_, samplePoints2_))
         return;
     for (Rival& rival : rivals_) {
