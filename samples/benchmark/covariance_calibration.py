@@ -911,7 +911,8 @@ def real_report(args, out_dir):
 
 # Bootstrap replicates over the tracks for the adjustment's own precision: fountain-P11's agree
 # with its covariance (doc/covariance.md) and take 13 minutes, templeSR's (2.5 views per track)
-# are up to twice its covariance's standard deviations and take under a minute.
+# are up to twice its covariance's standard deviations and take under a minute. A sequence not
+# listed takes none.
 ADJUSTMENT_BOOTSTRAP = {"fountain-P11": 0, "templeSR": 30}
 
 
@@ -926,7 +927,7 @@ def bundle_adjusted_ground_truth(args, rows):
         judged_rows = [r for r in rows if r["dataset"] == name and r["candidate"] == REPORTED]
         if not judged_rows:
             continue
-        result = bundle.measure(args.data, args.cache, ADJUSTMENT_BOOTSTRAP[name],
+        result = bundle.measure(args.data, args.cache, ADJUSTMENT_BOOTSTRAP.get(name, 0),
                                 log=lambda s: sys.stderr.write(s + "\n"), name=name)
         variant = result["variants"][bundle.VARIANTS[0][0]]
         difference, own, gt = bundle.ground_truth_error(variant["pairs"],

@@ -8,7 +8,6 @@
 
 #include "framework/estimation_pipeline.hpp"
 #include "framework/estimator_factory.hpp"
-#include "geometry/epipolar.hpp"
 #include "geometry/motion_parameterization.hpp"
 
 #include <opencv2/core/eigen.hpp>
@@ -46,7 +45,7 @@ void setEstimate(Report& report, const detail::Model& model)
 {
     report.F = toMat(model.F);
     if (model.motion()) {
-        report.E = toMat(detail::skew(model.motion()->t) * model.motion()->R);
+        report.E = toMat(model.essential());
         report.R = toMat(model.motion()->R);
         report.t = toMat(model.motion()->t);
         if (const auto* uncertainty = model.uncertainty.as<detail::MotionUncertainty>())

@@ -407,6 +407,24 @@ TEST(Rcme_RivalMotions, a_full_memory_considers_only_counts_above_its_least)
     EXPECT_EQ(rivals.leastSupportConsidered(), 96);
 }
 
+TEST(Rcme_RivalMotions, distinct_beyond_5_deg_of_rotation_or_15_of_translation_and_without_a_motion)
+{
+    Model a, b;
+    a.form = Motion{Eigen::Matrix3d::Identity(), Eigen::Vector3d::UnitX()};
+    b.form =
+        Motion{Eigen::AngleAxisd(4.0 * CV_PI / 180.0, Eigen::Vector3d::UnitY()).toRotationMatrix(),
+               Eigen::AngleAxisd(14.0 * CV_PI / 180.0, Eigen::Vector3d::UnitZ()) *
+                   Eigen::Vector3d::UnitX()};
+    EXPECT_FALSE(areDistinctMotions(a, b));
+    b.motion()->R =
+        Eigen::AngleAxisd(6.0 * CV_PI / 180.0, Eigen::Vector3d::UnitY()).toRotationMatrix();
+    EXPECT_TRUE(areDistinctMotions(a, b));
+    // A model still a fundamental matrix (its E had no decomposition) is no motion of either.
+    const Model unlifted;
+    EXPECT_TRUE(areDistinctMotions(unlifted, a));
+    EXPECT_TRUE(areDistinctMotions(a, unlifted));
+}
+
 TEST(Rcme_Statistics, binomial_tail_bound_small_and_large_samples)
 {
     // Exact values (summed with Python's integer binomial coefficients): P(X >= 16) = 0.040 and
