@@ -3,10 +3,12 @@
 test (metrics.epipole_blind), the confusion table's handling of unjudgeable runs, the given
 pairs whose rows are another pair's (datasets.rows_of_another_pair), and the covariance
 calibration's loop tests (covariance_calibration.loop_nees, loop_translation_nees) and its
-medians' interval (median_interval), and the bundle adjustment that measures fountain-P11's and
-templeSR's ground-truth error (bundle_adjustment).
+medians' interval (median_interval), vo_front_end.py's refusal of bad arguments, and the bundle
+adjustment that measures fountain-P11's and templeSR's ground-truth error (bundle_adjustment).
 
     PYTHONPATH=build/python /usr/bin/python3 samples/benchmark/test_judges.py"""
+import contextlib
+import io
 import types
 import unittest
 
@@ -17,6 +19,7 @@ import covariance_calibration as calibration
 import datasets
 import metrics
 import report
+import vo_front_end
 from methods import rcme
 
 
@@ -195,6 +198,25 @@ def _multi_view(seed, cameras=6, points=300, sigma=0.5):
     problem = bundle.Problem(cam, pt, np.zeros((len(cam), 2)), cameras, points)
     problem.uv = problem.residuals(truth)[0] + sigma * rng.standard_normal((len(cam), 2))
     return problem, truth
+
+
+class VoFrontEndArguments(unittest.TestCase):
+    """Bad arguments of vo_front_end.py stop it with argparse's error (exit 2) naming them, before
+    any data is read."""
+
+    def assert_refused(self, argv, name):
+        err = io.StringIO()
+        with contextlib.redirect_stderr(err), self.assertRaises(SystemExit) as stop:
+            vo_front_end.main(argv)
+        self.assertEqual(stop.exception.code, 2)
+        self.assertIn(name, err.getvalue())
+
+    def test_each_bad_argument_is_named(self):
+        self.assert_refused(["--methods", "rcme default,nope"], "--methods")
+        self.assert_refused(["--other-states", "1,x"], "--other-states")
+        self.assert_refused(["--first-frame", "-1"], "--first-frame")
+        self.assert_refused(["--frames", "1"], "--frames")
+        self.assert_refused(["--sequence", "KITTI 99"], "--sequence")
 
 
 class MedianInterval(unittest.TestCase):

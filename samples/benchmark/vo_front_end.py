@@ -285,7 +285,8 @@ def main(argv=None):
     ap.add_argument("--inputs", default="KLT,ORB", help="KLT, ORB or both (comma-separated)")
     ap.add_argument("--quick", action="store_true",
                     help="the first 8 frames of each sequence (the ctest smoke run)")
-    ap.add_argument("--sequence", help="only this sequence (e.g. \"KITTI 01\")")
+    ap.add_argument("--sequence", choices=[label for label, _ in SEQUENCES],
+                    help="only this sequence")
     ap.add_argument("--first-frame", type=int, default=0, help="frames from this one on")
     ap.add_argument("--frames", type=int, help="this many frames (default: all, 8 with --quick)")
     ap.add_argument("--methods", help="comma-separated subset of " + ", ".join(METHODS))
@@ -298,7 +299,8 @@ def main(argv=None):
     chosen = METHODS if args.methods is None else args.methods.split(",")
     unknown = [m for m in chosen if m not in METHODS]
     if unknown:
-        ap.error("--methods: unknown %s (the suite's: %s)" % (", ".join(unknown), ", ".join(METHODS)))
+        ap.error("--methods: unknown %s (the suite's: %s)" % (", ".join(unknown),
+                                                              ", ".join(METHODS)))
     try:
         states = [int(k) for k in args.other_states.split(",") if k.strip()]
     except ValueError:
