@@ -208,7 +208,7 @@ double rotationNees(const Report& r, const Matx33d& Rgt)
 % true) the final polish's Cauchy loss returns a motion more precise than least squares, and the
 reported covariance is that M-estimate's (its own sandwich; components/residual_covariance.cpp).
 With least squares' covariance the rotation NEES mean was 1.2 on such scenes (twice too wide);
-measured 2.7 (chi-square(3): 3). */
+measured 2.53 (chi-square(3): 3; 2.40 while the sandwich could only raise the one-noise form). */
 TEST(Rcme_Covariance, polished_motion_on_heavy_tailed_matches_is_calibrated)
 {
     const int scenes = testRuns(60, 10);
