@@ -134,7 +134,8 @@ def truncated_normal_variance(k):
 def psd_max(A, B, margin=0.0):
     """The smallest covariance at least as large as A and B along every direction, B's
     eigenvalues in A's whitened coordinates lowered by margin first:
-    A^1/2 max(I, A^-1/2 B A^-1/2 - margin) A^1/2 (the library's rule with margin 2 sqrt(2 / n))."""
+    A^1/2 max(I, A^-1/2 B A^-1/2 - margin) A^1/2 (with margin 2 sqrt(2 / n), the library's
+    sandwichBeyondItsNoise as it raises the covariance, without lowering it)."""
     w, V = np.linalg.eigh(A)
     half = V @ np.diag(np.sqrt(np.maximum(w, 1e-300))) @ V.T
     inv_half = V @ np.diag(1 / np.sqrt(np.maximum(w, 1e-300))) @ V.T

@@ -166,9 +166,9 @@ public:
                 // A polished motion is the loss's M-estimate: its own sandwich, beside the
                 // model-based covariance scaled by the loss's variance factor. That factor takes
                 // one noise for every inlier, so here the sandwich lowers the model-based form too
-                // where it is smaller beyond its noise (raising alone kept KITTI 06's loops at a
-                // median NEES of 1.27 against chi-square(3)'s 2.37; the sandwich alone is
-                // over-confident from 100 points down, doc/covariance.md).
+                // where it is smaller beyond its noise: raising alone stays conservative on real
+                // loops, and the sandwich alone is over-confident on small sets
+                // (doc/covariance.md).
                 const Matrix curvatureInverse = robust.solve(Matrix::Identity());
                 covariance =
                     sandwichBeyondItsNoise<P>(modelBased * scores.robustFactor,

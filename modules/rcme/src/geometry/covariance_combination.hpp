@@ -20,10 +20,9 @@ namespace detail {
 eigenvalues that exceed 1 by more than two of their standard errors under Gaussian noise (about
 sqrt(2 / count) each: a mean of `count` squared residuals) are taken, lowered by that margin; the
 others stay 1. Without the margin, the larger of two noisy estimates makes a calibrated covariance
-conservative on synthetic scenes (rotation NEES mean 2.50 instead of 2.68; with it 2.62,
-doc/covariance.md). With `lowerToo`, eigenvalues below 1 by more than the margin are taken as well,
-raised by it (a direction where the sandwich is zero keeps the margin). The model-based covariance
-when it is not positive definite or the sandwich is not finite. */
+conservative (measured in doc/covariance.md). With `lowerToo`, eigenvalues below 1 by more than the
+margin are taken as well, raised by it (a direction where the sandwich is zero keeps the margin).
+The model-based covariance when it is not positive definite or the sandwich is not finite. */
 template <int P>
 Eigen::Matrix<double, P, P> sandwichBeyondItsNoise(const Eigen::Matrix<double, P, P>& modelBased,
                                                    const Eigen::Matrix<double, P, P>& sandwich,
