@@ -535,7 +535,7 @@ def report(result, bootstrap):
     return lines
 
 
-def main():
+def main(argv=None):
     ap = matching.benchmark_arguments(__doc__, REPO_ROOT, None)
     ap.add_argument("--sequence", choices=sorted(SEQUENCES), default="fountain-P11",
                     help="the sequence whose cameras are adjusted")
@@ -543,7 +543,12 @@ def main():
     ap.add_argument("--max-side", type=int, default=None,
                     help="SIFT on images downscaled to this size for the tracks (default the "
                          "benchmark's: 1536 px for fountain-P11; 0: full size)")
-    args = ap.parse_args()
+    args = ap.parse_args(argv)
+    # Refused before any data is read: a negative count or size was taken as none before.
+    if args.bootstrap < 0:
+        ap.error("--bootstrap must be >= 0 (replicates), not %d" % args.bootstrap)
+    if args.max_side is not None and args.max_side < 0:
+        ap.error("--max-side must be >= 0 (pixels; 0: full size), not %d" % args.max_side)
     folder, _, report_name = SEQUENCES[args.sequence]
     out = args.out or os.path.join(REPO_ROOT, "doc", "benchmark", report_name)
     if not os.path.isdir(os.path.join(args.data, folder)):

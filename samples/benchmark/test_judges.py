@@ -3,8 +3,9 @@
 test (metrics.epipole_blind), the confusion table's handling of unjudgeable runs, the given
 pairs whose rows are another pair's (datasets.rows_of_another_pair), and the covariance
 calibration's loop tests (covariance_calibration.loop_nees, loop_translation_nees) and its
-medians' interval (median_interval), vo_front_end.py's refusal of bad arguments, and the bundle
-adjustment that measures fountain-P11's and templeSR's ground-truth error (bundle_adjustment).
+medians' interval (median_interval), vo_front_end.py's and bundle_adjustment.py's refusal of bad
+arguments, and the bundle adjustment that measures fountain-P11's and templeSR's ground-truth
+error (bundle_adjustment).
 
     PYTHONPATH=build/python /usr/bin/python3 samples/benchmark/test_judges.py"""
 import contextlib
@@ -217,6 +218,22 @@ class VoFrontEndArguments(unittest.TestCase):
         self.assert_refused(["--first-frame", "-1"], "--first-frame")
         self.assert_refused(["--frames", "1"], "--frames")
         self.assert_refused(["--sequence", "KITTI 99"], "--sequence")
+
+
+class BundleAdjustmentArguments(unittest.TestCase):
+    """Bad arguments of bundle_adjustment.py stop it with argparse's error (exit 2) naming them,
+    before any data is read."""
+
+    def test_each_bad_argument_is_named(self):
+        for argv, name in ((["--sequence", "nope"], "--sequence"),
+                           (["--bootstrap", "-1"], "--bootstrap"),
+                           (["--max-side", "-5"], "--max-side"),
+                           (["--bootstrap", "x"], "--bootstrap")):
+            err = io.StringIO()
+            with contextlib.redirect_stderr(err), self.assertRaises(SystemExit) as stop:
+                bundle.main(argv + ["--data", "/nonexistent"])
+            self.assertEqual(stop.exception.code, 2, argv)
+            self.assertIn(name, err.getvalue())
 
 
 class MedianInterval(unittest.TestCase):
