@@ -74,12 +74,13 @@ public:
     {
         return scorer_->evaluate(data, model);
     }
-    Score evaluateUpTo(const TwoViewData& data, const Model& model, int inliersThatMatter,
+    Score evaluateUpTo(const TwoViewData& data, const Model& model, const HypothesisBar& bar,
                        int& pointsRead) override
     {
-        return bailsOut_ ? scorer_->evaluateUpTo(data, model, inliersThatMatter, pointsRead)
-                         : Scorer::evaluateUpTo(data, model, inliersThatMatter, pointsRead);
+        return bailsOut_ ? scorer_->evaluateUpTo(data, model, bar, pointsRead)
+                         : Scorer::evaluateUpTo(data, model, bar, pointsRead);
     }
+    bool ranksByInlierCount() const override { return scorer_->ranksByInlierCount(); }
     void commit(Score& score) override { scorer_->commit(score); }
     std::unique_ptr<Scorer> clone() const override
     {

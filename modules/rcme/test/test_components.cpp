@@ -394,17 +394,19 @@ TEST(Rcme_RivalMotions, a_full_memory_considers_only_counts_above_its_least)
     };
     RivalMotions rivals(2);
     offer(rivals, 0.0, 100);
-    EXPECT_EQ(rivals.leastSupportConsidered(), 50); // half the best while a place is free
+    EXPECT_EQ(rivals.leastSupportConsidered(true), 50); // half the best while a place is free
     offer(rivals, 20.0, 90);
-    EXPECT_EQ(rivals.leastSupportConsidered(), 91);
+    EXPECT_EQ(rivals.leastSupportConsidered(true), 91);
+    // A score other than the count can let in a motion of fewer inliers than any kept.
+    EXPECT_EQ(rivals.leastSupportConsidered(false), 50);
     offer(rivals, 40.0, 90); // a third motion no better than the least kept
     EXPECT_EQ(counts(rivals), std::vector<int>({90, 100}));
     offer(rivals, 40.0, 95); // better: it takes the least one's place
     EXPECT_EQ(counts(rivals), std::vector<int>({95, 100}));
-    EXPECT_EQ(rivals.leastSupportConsidered(), 96);
+    EXPECT_EQ(rivals.leastSupportConsidered(true), 96);
     offer(rivals, 0.5, 120); // the same motion as the best, better: it replaces it
     EXPECT_EQ(counts(rivals), std::vector<int>({95, 120}));
-    EXPECT_EQ(rivals.leastSupportConsidered(), 96);
+    EXPECT_EQ(rivals.leastSupportConsidered(true), 96);
 }
 
 TEST(Rcme_RivalMotions, distinct_beyond_5_deg_of_rotation_or_15_of_translation_and_without_a_motion)

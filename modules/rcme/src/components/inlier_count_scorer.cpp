@@ -32,17 +32,19 @@ public:
 
     // The score is the count, so a hypothesis that cannot reach the count that matters cannot
     // become the best candidate: most bad hypotheses stop after a fraction of the points.
-    Score evaluateUpTo(const TwoViewData& data, const Model& model, int inliersThatMatter,
+    Score evaluateUpTo(const TwoViewData& data, const Model& model, const HypothesisBar& bar,
                        int& pointsRead) override
     {
         size_t read = 0;
         Score score = scoreOf(countInSampsonBandReaching(
-            model.F, data.points1, data.points2, thresholdSquared_, inliersThatMatter, read));
+            model.F, data.points1, data.points2, thresholdSquared_, bar.inliersThatMatter, read));
         pointsRead = static_cast<int>(read);
         if (read < data.points1.size())
             score.isCandidate = false;
         return score;
     }
+
+    bool ranksByInlierCount() const override { return true; }
 
     std::optional<Score> scoreOfBandCount(int bandInliers) const override
     {

@@ -32,6 +32,16 @@ const CandidateSet::Candidate* CandidateSet::best(const Scorer& scorer) const
     return best;
 }
 
+void CandidateSet::frontSteps(std::vector<std::pair<double, int>>& steps) const
+{
+    steps.clear();
+    for (const Candidate& c : front_)
+        steps.emplace_back(c.score.value, c.score.inlierCount);
+    std::sort(steps.begin(), steps.end());
+    for (size_t i = 1; i < steps.size(); ++i)
+        steps[i].second = std::max(steps[i].second, steps[i - 1].second);
+}
+
 } // namespace detail
 } // namespace rcme
 } // namespace cv

@@ -37,6 +37,9 @@ public:
     //! The candidate of least score that `scorer` still accepts, or null.
     const Candidate* best(const Scorer& scorer) const;
 
+    //! The front as HypothesisBar::front: what add() would refuse.
+    void frontSteps(std::vector<std::pair<double, int>>& steps) const;
+
 private:
     std::vector<Candidate> front_;
 };

@@ -13,6 +13,7 @@
 
 #include <memory>
 #include <optional>
+#include <utility>
 #include <vector>
 
 namespace cv {
@@ -69,6 +70,33 @@ public:
     virtual std::unique_ptr<ModelVerifier> clone() const = 0;
 };
 
+/** What a hypothesis of the loop must reach to change the run (HypothesisSearch), taken before a
+batch of hypotheses is evaluated; read by Scorer::evaluateUpTo to stop reading a hypothesis that
+cannot. Both only tighten as the batch is committed, so a hypothesis out of reach then stays so. */
+struct HypothesisBar
+{
+    //! The inlier count from which a hypothesis matters by its count alone: a new most-supported
+    //! hypothesis, or a rival the ambiguity test would keep.
+    int inliersThatMatter = 0;
+    /** The candidate set's front (CandidateSet::add keeps what no candidate beats in both score
+    and inlier count) as steps of (score value, most inliers among the candidates of at most that
+    value), values increasing: a hypothesis of value v and n inliers is refused when a step has
+    value <= v and inliers >= n. Empty while there is no candidate. */
+    std::vector<std::pair<double, int>> front;
+
+    //! The most inliers of a candidate whose value is at most `value`, or -1 if there is none.
+    int inliersDominatingAt(double value) const
+    {
+        int most = -1;
+        for (const auto& [stepValue, inliers] : front) {
+            if (stepValue > value)
+                break;
+            most = inliers;
+        }
+        return most;
+    }
+};
+
 /** Scores hypotheses and classifies points. A score is computed in two steps so that hypotheses
 can be evaluated on several threads with the result of a sequential run: evaluate() depends only
 on the model (any thread, its own copy of the scorer), commit() feeds the run-wide state and
@@ -79,17 +107,16 @@ public:
     virtual ~Scorer() = default;
     //! The score of `model` before the run-wide tests; uses only this scorer's buffers.
     virtual Score evaluate(const TwoViewData& data, const Model& model) = 0;
-    /** evaluate() for the loop's hypotheses, which matter to the run only from
-    `inliersThatMatter` inliers on (HypothesisSearch: a new most-supported hypothesis, or a rival
-    within the ambiguity test's share of the best). A scorer whose candidates are ranked by their
-    inlier count alone may stop reading points once that count is out of reach (early bail-out,
-    as USAC's and COLMAP's): it then returns the count so far, below `inliersThatMatter`, and no
-    candidate, and the run is the same as with every point read. `pointsRead` receives the
-    number of points read. By default every point is read. */
-    virtual Score evaluateUpTo(const TwoViewData& data, const Model& model, int inliersThatMatter,
-                               int& pointsRead)
+    /** evaluate() for the loop's hypotheses, which matter to the run only when they reach `bar`
+    (a new most-supported hypothesis, a rival the ambiguity test keeps, or a candidate the
+    candidate set takes). A scorer may stop reading points once the hypothesis is out of reach
+    (early bail-out, as USAC's and COLMAP's): it then returns an inlier count below
+    bar.inliersThatMatter and no candidate, and the run is the same as with every point read.
+    `pointsRead` receives the number of points read. By default every point is read. */
+    virtual Score evaluateUpTo(const TwoViewData& data, const Model& model,
+                               const HypothesisBar& bar, int& pointsRead)
     {
-        (void)inliersThatMatter;
+        (void)bar;
         pointsRead = data.size();
         return evaluate(data, model);
     }
@@ -101,6 +128,8 @@ public:
         (void)bandInliers;
         return std::nullopt;
     }
+    //! Whether Score::value is minus the inlier count (a better score is a larger count).
+    virtual bool ranksByInlierCount() const { return false; }
     //! Records an evaluated score in the run so far and completes `score.isCandidate`.
     virtual void commit(Score& score) { (void)score; }
     //! evaluate() then commit(): the score of `model` in a sequential run.

@@ -65,11 +65,11 @@ struct Lane
 solve, verify, Scorer::evaluate; on several threads when parallel), sequential verifiers (SPRT)
 in iteration order between the two parallel steps; then the batch is committed in iteration order
 on one thread: run-wide tests (Scorer::commit), candidate set, local optimisation, iteration
-bound. Evaluation reads no state of the run but the inlier count that matters, taken before the
-batch (a scorer that stops below it changes nothing the run would keep), so the result is that
-of a sequential run whatever the batch size and thread count (a sequential run is batches of
-one). Iterations beyond a bound lowered inside a batch are evaluated but never committed. Every
-buffer is sized here: the loop itself does not allocate. */
+bound. Evaluation reads no state of the run but what a hypothesis must reach, taken before the
+batch (HypothesisBar: a scorer that stops below it changes nothing the run would keep), so the
+result is that of a sequential run whatever the batch size and thread count (a sequential run is
+batches of one). Iterations beyond a bound lowered inside a batch are evaluated but never committed.
+Every buffer is sized here: the loop itself does not allocate. */
 class HypothesisSearch
 {
 public:
@@ -118,6 +118,7 @@ public:
             slot.bandInliers.resize(solutions);
         }
         innerDraw_.resize(static_cast<size_t>(c.solver->sampleSize()));
+        bar_.front.reserve(32); // room for a front far larger than seen in practice
     }
 
     void run(SearchResult& result)
@@ -132,7 +133,7 @@ public:
                 break;
             }
             const int count = std::min(batch_, c_.termination->iterationBound() - iteration);
-            inliersThatMatter_ = inliersThatMatter(result);
+            setBar(result);
             evaluate(iteration, count);
             for (int k = 0; k < count && iteration < c_.termination->iterationBound();
                  ++k, ++iteration)
@@ -168,16 +169,17 @@ private:
             laneCount);
     }
 
-    /* The least inlier count at which a hypothesis changes the run: a new most-supported
-    hypothesis (Scorer::evaluateUpTo: a scorer ranking by count has no better candidate below it),
-    or a rival RivalMotions would keep. Taken before a batch is evaluated; it only grows as
-    the batch is committed, so a hypothesis below it then stays below it. */
-    int inliersThatMatter(const SearchResult& result) const
+    /* What a hypothesis must reach to change the run (HypothesisBar), taken before a batch is
+    evaluated: the least inlier count of a new most-supported hypothesis or of a rival
+    RivalMotions would keep, and the candidate set's front. */
+    void setBar(const SearchResult& result)
     {
         int least = result.mostSupportedInliers + 1;
         if (rivals_)
-            least = std::min(least, rivals_->leastSupportConsidered());
-        return least;
+            least =
+                std::min(least, rivals_->leastSupportConsidered(c_.scorer->ranksByInlierCount()));
+        bar_.inliersThatMatter = least;
+        result.candidates.frontSteps(bar_.front);
     }
 
     void evaluate(int firstIteration, int count)
@@ -280,7 +282,7 @@ private:
                 drawDistinct(state, static_cast<uint32_t>(innerPool_.size()), 0, innerDraw_);
                 for (size_t j = 0; j < m; ++j)
                     slot.sample[j] = innerPool_[static_cast<size_t>(innerDraw_[j])];
-                inliersThatMatter_ = inliersThatMatter(result);
+                setBar(result);
                 solveAndVerify(lane, slot, /*score=*/true);
                 commit(slot, candidates, result);
             }
@@ -302,7 +304,7 @@ private:
     }
 
     // A hypothesis whose band inliers a verifier has counted is not read again: a count below
-    // inliersThatMatter_ then stays a candidate where the bail-out would have dropped it, which
+    // bar_.inliersThatMatter then stays a candidate where the bail-out would have dropped it, which
     // changes nothing (it is neither the most supported, nor a rival, nor the best candidate).
     void scoreHypothesis(Lane& lane, IterationSlot& slot, size_t h) const
     {
@@ -313,8 +315,7 @@ private:
                 return;
             }
         int pointsRead = 0;
-        slot.scores[h] =
-            lane.scorer->evaluateUpTo(data_, slot.models[h], inliersThatMatter_, pointsRead);
+        slot.scores[h] = lane.scorer->evaluateUpTo(data_, slot.models[h], bar_, pointsRead);
         slot.pointsRead += pointsRead;
     }
 
@@ -347,7 +348,7 @@ private:
     int innerDrawn_ = 0;                              //!< inner samples drawn so far
     std::unique_ptr<RivalMotions> rivals_;            //!< with components.tracksRivals only
     long long pointsEvaluated_ = 0; //!< residuals evaluated by verification and scoring
-    int inliersThatMatter_ = 0;     //!< inliersThatMatter() before the batch being evaluated
+    HypothesisBar bar_;             //!< setBar() before the batch being evaluated
 };
 
 } // namespace

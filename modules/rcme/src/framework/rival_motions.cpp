@@ -20,14 +20,13 @@ RivalMotions::RivalMotions(int capacity) : capacity_(static_cast<size_t>(std::ma
     samplePoints2_.reserve(8);
 }
 
-int RivalMotions::leastSupportConsidered() const
+int RivalMotions::leastSupportConsidered(bool rankedByCount) const
 {
     const int share = static_cast<int>(std::ceil(kSupportShare * mostInliers_));
-    if (rivals_.size() < capacity_)
+    if (rivals_.size() < capacity_ || !rankedByCount)
         return share;
-    // Full: a hypothesis enters only by a better score than a rival's, and for a scorer ranked by
-    // its count alone (the only kind that uses this bound, Scorer::evaluateUpTo) that is a count
-    // above the least one kept.
+    // Full: a hypothesis enters only by a better score than a rival's, and for a score that is
+    // the count that is a count above the least one kept.
     int least = rivals_.front().score.inlierCount;
     for (const Rival& rival : rivals_)
         least = std::min(least, rival.score.inlierCount);

@@ -34,9 +34,9 @@ public:
                const Score& score);
 
     /** The least inlier count at which offer() can change the rivals: half the best offered so
-    far, and once all `capacity` places are taken, one more than the least count kept (for
-    scorers ranked by their count alone). */
-    int leastSupportConsidered() const;
+    far, and, when the scores rank by inlier count alone (`rankedByCount`) and all `capacity`
+    places are taken, one more than the least count kept. */
+    int leastSupportConsidered(bool rankedByCount) const;
     //! One per distinct motion seen, in no particular order.
     const std::vector<Rival>& rivals() const { return rivals_; }
 
