@@ -38,7 +38,8 @@ N = 1000  # main() sets it from --iterations
 # (candidate selection, the residual covariance, the final decision) has no row.
 VARIANTS = [
     ("default", "", {}),
-    ("USAC's sample count", "the loop's extra samples: cleanSampleSuccessRate 1 (default 0.3)",
+    ("USAC's sample count", "the loop's extra samples with K: cleanSampleSuccessRate 1 (default: "
+     "0.3 with K, 1 without)",
      {"cleanSampleSuccessRate": 1.0}),
     ("no local optimisation", "LO, its inner sampling and the final polish: localOptimization "
      "false",

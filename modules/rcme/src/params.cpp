@@ -12,8 +12,8 @@ namespace rcme {
 
 Params::Params()
     : method(METHOD_STANDARD), sampler(SAMPLER_UNIFORM), solver(SOLVER_AUTO),
-      verification(VERIFICATION_AUTO), sigma(1.0), threshold(0.0), confidence(0.99),
-      cleanSampleSuccessRate(0.3), maxIterations(1000), exactIterations(false),
+      verification(VERIFICATION_AUTO), scoring(SCORING_AUTO), sigma(1.0), threshold(0.0),
+      confidence(0.99), cleanSampleSuccessRate(0.0), maxIterations(1000), exactIterations(false),
       randomGeneratorState(0), refine(true), refineIterations(20), useEstimatedNoise(true),
       alpha(0.05), entropyThreshold(1.27), inlierRatioFactor(0.9), priorInlierRatio(0.0),
       consistencyDof(1), sampleFitIterations(5), sampleLeverage(false),
@@ -53,6 +53,8 @@ Params Params::asPublished(Method method)
 {
     Params p;
     p.method = method;
+    if (method == METHOD_STANDARD)
+        p.scoring = SCORING_INLIER_COUNT;
     p.solver = SOLVER_EIGHT_POINT;
     p.localOptimization = false;
     p.cleanSampleSuccessRate = 1.0;
@@ -88,6 +90,7 @@ constexpr NamedValue<MinimalSolverKind> kSolvers[] = {
     RCME_MINIMAL_SOLVER_KIND_VALUES(RCME_NAMED_VALUE)};
 constexpr NamedValue<VerificationKind> kVerifications[] = {
     RCME_VERIFICATION_KIND_VALUES(RCME_NAMED_VALUE)};
+constexpr NamedValue<ScoringKind> kScorings[] = {RCME_SCORING_KIND_VALUES(RCME_NAMED_VALUE)};
 constexpr NamedValue<Status> kStatuses[] = {RCME_STATUS_VALUES(RCME_NAMED_VALUE)};
 #undef RCME_NAMED_VALUE
 
@@ -136,11 +139,12 @@ void validateParams(const Params& p)
     checkEnum(kSamplers, p.sampler, "sampler");
     checkEnum(kSolvers, p.solver, "solver");
     checkEnum(kVerifications, p.verification, "verification");
+    checkEnum(kScorings, p.scoring, "scoring");
     checkRange(std::isfinite(p.sigma) && p.sigma > 0, "Params.sigma must be positive and finite");
     checkRange(std::isfinite(p.threshold), "Params.threshold must be finite (<= 0: from sigma)");
     checkRange(p.confidence > 0 && p.confidence < 1, "Params.confidence must be in (0, 1)");
-    checkRange(p.cleanSampleSuccessRate > 0 && p.cleanSampleSuccessRate <= 1,
-               "Params.cleanSampleSuccessRate must be in (0, 1]");
+    checkRange(p.cleanSampleSuccessRate >= 0 && p.cleanSampleSuccessRate <= 1,
+               "Params.cleanSampleSuccessRate must be in (0, 1] (0: by the camera matrix)");
     checkRange(p.maxIterations >= 1 && p.maxIterations <= kMaxIterationsLimit,
                "Params.maxIterations must be in [1, 10000000]");
     checkRange(p.refineIterations >= 0 && p.refineIterations <= 1000,

@@ -15,6 +15,7 @@
 #include "geometry/covariance_combination.hpp"
 #include "geometry/epipolar.hpp"
 #include "geometry/motion_parameterization.hpp"
+#include "geometry/residual_bands.hpp"
 #include "geometry/statistics.hpp"
 #include "test_internal_helpers.hpp"
 
@@ -173,6 +174,51 @@ void expectGradientMatchesFiniteDifferences(const Eigen::Matrix3d& F, const Eige
                 << "point " << i << " k " << k;
         }
     }
+}
+
+// MSAC's truncated cost: each squared Sampson distance capped at 1.5 thresholds, in units of the
+// threshold squared; the inliers and the candidate test are the count's band.
+TEST(Rcme_TruncatedCostScorer, sums_the_capped_distances_and_counts_the_band)
+{
+    const SyntheticScene s = testScene(SCENE_GENERIC, 3, 0.5, 1.0, 300);
+    const TwoViewData data = sceneData(s, false, /*inliersOnly=*/false);
+    const double t2 = data.threshold * data.threshold;
+    Model model;
+    model.F = trueF(s);
+    model.F(0, 2) += 1e-4 * model.F.norm(); // off the truth: distances of every size
+    double cost = 0;
+    int inliers = 0;
+    for (size_t i = 0; i < data.points1.size(); ++i) {
+        const double d2 = sampsonDistanceSquared(model.F, data.points1[i], data.points2[i]);
+        cost += std::min(d2, 2.25 * t2);
+        inliers += d2 <= t2;
+    }
+    ASSERT_GT(inliers, 20);
+    ASSERT_LT(inliers, 250);
+    std::unique_ptr<Scorer> scorer = createTruncatedCostScorer(data, 7, 1000);
+    const Score score = scorer->evaluate(data, model);
+    EXPECT_NEAR(score.value, cost / t2, 1e-9 * cost / t2);
+    EXPECT_EQ(score.inlierCount, inliers);
+    EXPECT_TRUE(score.isCandidate);
+    std::vector<uchar> mask;
+    scorer->classify(data, model, mask);
+    EXPECT_EQ(countNonZero(mask), inliers);
+    EXPECT_EQ(countInSampsonBand(model.F, data.points1, data.points2, t2), inliers);
+
+    // A hypothesis dominated by a candidate of lower cost and more inliers stops early, with no
+    // candidate; one that is not is read to the end.
+    HypothesisBar bar;
+    bar.inliersThatMatter = static_cast<int>(data.size()) + 1;
+    bar.front = {{score.value / 2, static_cast<int>(data.size())}};
+    int read = 0;
+    const Score stopped = scorer->evaluateUpTo(data, model, bar, read);
+    EXPECT_LT(read, static_cast<int>(data.size()));
+    EXPECT_FALSE(stopped.isCandidate);
+    bar.front = {{score.value / 2, inliers - 1}};
+    const Score whole = scorer->evaluateUpTo(data, model, bar, read);
+    EXPECT_EQ(read, static_cast<int>(data.size()));
+    EXPECT_EQ(whole.value, score.value);
+    EXPECT_EQ(whole.inlierCount, inliers);
 }
 
 TEST(Rcme_Parameterization, motion_jacobian_matches_finite_differences)

@@ -8,6 +8,7 @@
 #include "opencv2/rcme/opencv_geometry.hpp"
 
 #include <algorithm>
+#include <optional>
 #include <thread>
 
 namespace opencv_test {
@@ -59,28 +60,63 @@ TEST(Rcme_Standard, recovers_pose_on_well_conditioned_scenes)
     EXPECT_LE(failures, 5);
 }
 
-// SOLVER_AUTO is the 5-point solver with K and the 7-point one without: the same seed gives the
-// same estimate as naming that solver, and a different one from the other solver.
+/* A field's automatic value picks one value with K and another without: on `scene`, with and
+without K, the default with the field left automatic makes the same run as naming that value, and
+a different one (its estimate, or its iteration count) from naming `otherWithK` / `otherWithoutK`.
+`set(params, value)` sets the field. */
+template <class T, class Set>
+void expectAutomaticPicks(const SyntheticScene& scene, Set set, T withK, T withoutK, T otherWithK,
+                          T otherWithoutK)
+{
+    for (bool calibrated : {true, false}) {
+        SCOPED_TRACE(calibrated ? "with K" : "without K");
+        const auto estimate = [&](std::optional<T> value) {
+            Params p;
+            if (value)
+                set(p, *value);
+            return estimateRelativeMotion(scene.points1, scene.points2,
+                                          calibrated ? scene.cameraMatrix : Mat(), p);
+        };
+        const Report automatic = estimate(std::nullopt);
+        const Report same = estimate(calibrated ? withK : withoutK);
+        const Report other = estimate(calibrated ? otherWithK : otherWithoutK);
+        ASSERT_EQ(automatic.status, STATUS_SUCCESS) << automatic.message;
+        EXPECT_EQ(automatic.iterations, same.iterations);
+        EXPECT_EQ(cv::norm(automatic.F, same.F, NORM_INF), 0.0);
+        EXPECT_EQ(countNonZero(automatic.mask != same.mask), 0);
+        EXPECT_TRUE(automatic.iterations != other.iterations ||
+                    cv::norm(automatic.F, other.F, NORM_INF) > 0);
+    }
+}
+
+// SOLVER_AUTO is the 5-point solver with K and the 7-point one without.
 TEST(Rcme_Standard, auto_solver_is_five_point_with_k_and_seven_point_without)
 {
-    const SyntheticScene s = genericTestScene(3);
-    Params automatic;
-    ASSERT_EQ(automatic.solver, SOLVER_AUTO);
-    const auto estimate = [&](MinimalSolverKind solver, bool withK) {
-        Params p = automatic;
-        p.solver = solver;
-        return estimateRelativeMotion(s.points1, s.points2, withK ? s.cameraMatrix : Mat(), p);
-    };
-    for (bool withK : {true, false}) {
-        SCOPED_TRACE(withK ? "with K" : "without K");
-        const Report a = estimate(SOLVER_AUTO, withK);
-        const Report same = estimate(withK ? SOLVER_FIVE_POINT : SOLVER_SEVEN_POINT, withK);
-        const Report other = estimate(SOLVER_EIGHT_POINT, withK);
-        ASSERT_EQ(a.status, STATUS_SUCCESS) << a.message;
-        EXPECT_EQ(cv::norm(a.F, same.F, NORM_INF), 0.0);
-        EXPECT_EQ(countNonZero(a.mask != same.mask), 0);
-        EXPECT_GT(cv::norm(a.F, other.F, NORM_INF), 0.0);
-    }
+    ASSERT_EQ(Params().solver, SOLVER_AUTO);
+    expectAutomaticPicks(
+        genericTestScene(3), [](Params& p, MinimalSolverKind solver) { p.solver = solver; },
+        SOLVER_FIVE_POINT, SOLVER_SEVEN_POINT, SOLVER_EIGHT_POINT, SOLVER_EIGHT_POINT);
+}
+
+// SCORING_AUTO ranks by the inlier count with K and by the truncated cost without.
+TEST(Rcme_Standard, auto_scoring_is_the_count_with_k_and_the_truncated_cost_without)
+{
+    ASSERT_EQ(Params().scoring, SCORING_AUTO);
+    expectAutomaticPicks(
+        testScene(SCENE_GENERIC, 5, 0.4, 1.0, 200),
+        [](Params& p, ScoringKind scoring) { p.scoring = scoring; }, SCORING_INLIER_COUNT,
+        SCORING_TRUNCATED_COST, SCORING_TRUNCATED_COST, SCORING_INLIER_COUNT);
+    EXPECT_EQ(Params::asPublished(METHOD_STANDARD).scoring, SCORING_INLIER_COUNT);
+    EXPECT_EQ(Params::asPublished(METHOD_RCME).scoring, SCORING_AUTO);
+}
+
+// cleanSampleSuccessRate 0 (the default) is 0.3 with K and the classic bound's 1 without.
+TEST(Rcme_Standard, default_clean_sample_success_rate_is_0_3_with_k_and_1_without)
+{
+    ASSERT_EQ(Params().cleanSampleSuccessRate, 0.0);
+    expectAutomaticPicks(
+        testScene(SCENE_GENERIC, 5, 0.6, 1.0, 200),
+        [](Params& p, double rate) { p.cleanSampleSuccessRate = rate; }, 0.3, 1.0, 1.0, 0.3);
 }
 
 TEST(Rcme_Standard, as_published_is_the_paper_configuration)

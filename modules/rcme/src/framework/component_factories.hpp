@@ -22,6 +22,10 @@ std::unique_ptr<Sampler> createProsacSampler(std::vector<int> order, int sampleS
 std::unique_ptr<MinimalSolver> createEightPointSolver(bool essentialHypotheses);
 std::unique_ptr<Scorer> createInlierCountScorer(const TwoViewData& data, int sampleSize,
                                                 int maxIterations);
+//! MSAC's truncated cost of the Sampson distances (Params::scoring), with the count's candidate
+//! test and inliers.
+std::unique_ptr<Scorer> createTruncatedCostScorer(const TwoViewData& data, int sampleSize,
+                                                  int maxIterations);
 // cleanSampleSuccessRate: Params::cleanSampleSuccessRate (1: the classic bound).
 std::unique_ptr<Termination> createAdaptiveTermination(double confidence, int maxIterations,
                                                        int sampleSize,

@@ -68,7 +68,65 @@ RCME_VECTOR_CLONES int bandLoopReaching(const double* f, const double* a, const 
     return static_cast<int>(count);
 }
 
+// The truncated cost's points, a chunk at a time: the distances capped into a buffer by a loop of
+// bandBlock's shape (which vectorizes), then summed as four partial sums (element j into sum j
+// mod 4) added in a fixed order. The vector clone and the baseline one add in the same order, so
+// the cost does not depend on the machine; a single running sum would not vectorize.
+constexpr size_t kCostChunk = 32;
+
+RCME_VECTOR_CLONES RCME_SPECULATIVE_MATH void
+truncatedCostLoop(const double* f, const double* a, const double* b, size_t begin, size_t end,
+                  double thresholdSquared, double capSquared, long long& inliers, double& cost)
+{
+    const double f00 = f[0], f01 = f[1], f02 = f[2], f10 = f[3], f11 = f[4], f12 = f[5];
+    const double f20 = f[6], f21 = f[7], f22 = f[8];
+    long long count = 0;
+    double capped[kCostChunk];
+    while (begin < end) {
+        const size_t n = std::min(kCostChunk, end - begin);
+        const double* a0 = a + 2 * begin;
+        const double* b0 = b + 2 * begin;
+        for (size_t i = 0; i < n; ++i) {
+            const double x1 = a0[2 * i], y1 = a0[2 * i + 1], x2 = b0[2 * i], y2 = b0[2 * i + 1];
+            const double l0 = f00 * x1 + f01 * y1 + f02;
+            const double l1 = f10 * x1 + f11 * y1 + f12;
+            const double l2 = f20 * x1 + f21 * y1 + f22;
+            const double m0 = f00 * x2 + f10 * y2 + f20;
+            const double m1 = f01 * x2 + f11 * y2 + f21;
+            const double r = x2 * l0 + y2 * l1 + l2;
+            const double jj = l0 * l0 + l1 * l1 + m0 * m0 + m1 * m1;
+            const double rr = r * r;
+            count += (rr <= thresholdSquared * jj) & (jj > 0);
+            // min(rr / jj, cap) without dividing by a zero |J|: capped wherever rr >= cap jj.
+            capped[i] = rr < capSquared * jj ? rr / jj : capSquared;
+        }
+        for (size_t i = n; i < kCostChunk; ++i)
+            capped[i] = 0;
+        double sum[4] = {0, 0, 0, 0};
+        for (size_t j = 0; j < kCostChunk; j += 4)
+            for (size_t k = 0; k < 4; ++k)
+                sum[k] += capped[j + k];
+        cost += (sum[0] + sum[1]) + (sum[2] + sum[3]);
+        begin += n;
+    }
+    inliers += count;
+}
+
 } // namespace
+
+void addTruncatedSampsonCost(const Eigen::Matrix3d& F, const std::vector<Eigen::Vector2d>& points1,
+                             const std::vector<Eigen::Vector2d>& points2, size_t begin, size_t end,
+                             double thresholdSquared, double capSquared, int& inliers, double& cost)
+{
+    CV_DbgAssert(points1.size() == points2.size() && end <= points1.size());
+    if (begin >= end)
+        return;
+    const Eigen::Matrix<double, 3, 3, Eigen::RowMajor> f = F;
+    long long count = 0;
+    truncatedCostLoop(f.data(), points1.data()->data(), points2.data()->data(), begin, end,
+                      thresholdSquared, capSquared, count, cost);
+    inliers += static_cast<int>(count);
+}
 
 int countInSampsonBand(const Eigen::Matrix3d& F, const Eigen::Vector2d* points1,
                        const Eigen::Vector2d* points2, size_t count, double thresholdSquared,

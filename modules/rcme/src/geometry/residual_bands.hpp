@@ -33,6 +33,16 @@ int countInSampsonBandReaching(const Eigen::Matrix3d& F,
                                const std::vector<Eigen::Vector2d>& points2, double thresholdSquared,
                                int needed, size_t& pointsRead);
 
+/** MSAC's truncated cost of F on the correspondences [begin, end) of a set, added to `cost`:
+the sum of min(d^2, capSquared) over their squared Sampson distances d^2 (a point at an epipole,
+whose distance is infinite, adds capSquared); `inliers` is incremented by those with d^2 at most
+`thresholdSquared`. Called on blocks of points by a scorer that stops once a hypothesis cannot
+matter; compiled as countInSampsonBand. */
+void addTruncatedSampsonCost(const Eigen::Matrix3d& F, const std::vector<Eigen::Vector2d>& points1,
+                             const std::vector<Eigen::Vector2d>& points2, size_t begin, size_t end,
+                             double thresholdSquared, double capSquared, int& inliers,
+                             double& cost);
+
 } // namespace detail
 } // namespace rcme
 } // namespace cv

@@ -202,12 +202,13 @@ class _RcmeSuite:
         self.assertEqual(p.sampler, b.SAMPLER_UNIFORM)
         self.assertEqual(p.solver, b.SOLVER_AUTO)
         self.assertEqual(p.verification, b.VERIFICATION_AUTO)
-        for name in ("method", "sampler", "solver", "verification"):
+        self.assertEqual(p.scoring, b.SCORING_AUTO)
+        for name in ("method", "sampler", "solver", "verification", "scoring"):
             self.assertIs(type(getattr(p, name)), int, name)
         self.assertEqual(p.sigma, 1.0)
         self.assertLessEqual(p.threshold, 0.0)
         self.assertAlmostEqual(p.confidence, 0.99)
-        self.assertAlmostEqual(p.cleanSampleSuccessRate, 0.3)
+        self.assertEqual(p.cleanSampleSuccessRate, 0.0)  # 0.3 with K, 1 without
         self.assertEqual(p.maxIterations, 1000)
         self.assertIs(p.exactIterations, False)
         self.assertEqual(p.randomGeneratorState, 0)
@@ -233,6 +234,8 @@ class _RcmeSuite:
         self.assertEqual(p.solver, b.SOLVER_EIGHT_POINT)
         self.assertIs(p.localOptimization, False)
         self.assertEqual(p.cleanSampleSuccessRate, 1.0)
+        self.assertEqual(p.scoring, b.SCORING_AUTO)
+        self.assertEqual(as_published(b.METHOD_STANDARD).scoring, b.SCORING_INLIER_COUNT)
         self.assertEqual((p.ambiguityMargin, p.maxRotationStdDeg, p.maxTranslationStdDeg),
                          (0.0, 0.0, 0.0))
         self.assertEqual(p.maxIterations, b.Params().maxIterations)  # the rest: the defaults
