@@ -161,11 +161,14 @@ TEST(Rcme_PlaneParallax, twenty_points_a_few_pixels_off_the_plane_fix_f_without_
 {
     // 20 true points at 6-11 m (the plane is about 8 m away) among 130 outliers: of the 135-140
     // correspondences off the plane, the true epipole's support is at the edge of the chance
-    // bound. A chance bound over the 500 epipoles tried (12 agreeing points here) returns 15 of
+    // bound. A chance bound over the 500 epipoles tried (12 agreeing points here) returned 15 of
     // these 20 seeds with a right F; one over every pair (13-14) returned 7 and flagged the others
-    // degenerate. Not every success is right: in the sanitizer builds' rounding (baseline loops,
-    // clang) seed 15 returns an F 5.4 px off with success, an undetected failure of the kind the
-    // F-only suite counts (doc/f_only.md); at most one is allowed here.
+    // degenerate. The truncated cost without K leaves 14, and plane and parallax on a dominant
+    // homography 13 (11 in the sanitizer builds' rounding: baseline loops, clang): it also runs
+    // where F wins GRIC, and flags two more at the chance bound's edge (doc/f_only.md, "A dominant
+    // homography without K"). Not every success is right: in the sanitizer builds seed 15 once
+    // returned an F 5.4 px off with success, an undetected failure of the kind the F-only suite
+    // counts; at most one is allowed here.
     const DepthRange nearThePlane{6.0, 11.0};
     int right = 0, wrong = 0;
     for (int seed = 0; seed < 20; ++seed) {
@@ -178,7 +181,7 @@ TEST(Rcme_PlaneParallax, twenty_points_a_few_pixels_off_the_plane_fix_f_without_
         else
             ++wrong;
     }
-    EXPECT_GE(right, 12);
+    EXPECT_GE(right, 11);
     EXPECT_LE(wrong, 1);
 }
 

@@ -27,6 +27,8 @@ struct HomographyComparison
     double homographyGric = 0.0;
     //! A homography explains the inliers at least as well as F: planar scene or pure rotation.
     bool homographyExplainsInliers = false;
+    //! The share of the compared points (those either model explains) within H's band.
+    double homographyShare = 0.0;
     Eigen::Matrix3d H = Eigen::Matrix3d::Zero(); //!< the homography (pixels), when fitted
 };
 /** Torr's GRIC of F and of a homography fitted (RANSAC) to the method's inliers `mask` and F's
