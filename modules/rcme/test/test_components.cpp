@@ -9,6 +9,7 @@
 
 #ifdef RCME_STANDALONE_TESTS
 
+#include "framework/candidate_set.hpp"
 #include "framework/component_factories.hpp"
 #include "framework/model_space.hpp"
 #include "framework/rival_motions.hpp"
@@ -207,18 +208,58 @@ TEST(Rcme_TruncatedCostScorer, sums_the_capped_distances_and_counts_the_band)
 
     // A hypothesis dominated by a candidate of lower cost and more inliers stops early, with no
     // candidate; one that is not is read to the end.
+    CandidateFront front;
     HypothesisBar bar;
     bar.inliersThatMatter = static_cast<int>(data.size()) + 1;
-    bar.front = {{score.value / 2, static_cast<int>(data.size())}};
+    bar.front = &front;
+    front.steps = {{score.value / 2, static_cast<int>(data.size())}};
     int read = 0;
     const Score stopped = scorer->evaluateUpTo(data, model, bar, read);
     EXPECT_LT(read, static_cast<int>(data.size()));
     EXPECT_FALSE(stopped.isCandidate);
-    bar.front = {{score.value / 2, inliers - 1}};
+    front.steps = {{score.value / 2, inliers - 1}};
     const Score whole = scorer->evaluateUpTo(data, model, bar, read);
     EXPECT_EQ(read, static_cast<int>(data.size()));
     EXPECT_EQ(whole.value, score.value);
     EXPECT_EQ(whole.inlierCount, inliers);
+}
+
+// The candidate set decides by its front's steps, which the loop hands to the scorers: they refuse
+// exactly what some candidate offered so far beats in both score and inlier count.
+TEST(Rcme_CandidateSet, its_front_refuses_what_it_refuses)
+{
+    const std::vector<std::pair<double, int>> offered = {
+        {-3.0, 40}, {-5.0, 30}, {-1.0, 60}, {-4.0, 45}, {-2.0, 45}, {-6.0, 10}, {-1.0, 70}};
+    CandidateSet set;
+    for (const auto& [value, inliers] : offered) {
+        Score score;
+        score.value = value;
+        score.inlierCount = inliers;
+        set.add(Model(), score);
+    }
+    // The front: (-6, 10), (-5, 30), (-4, 45), (-1, 70); (-3, 40), (-2, 45), (-1, 60) are beaten.
+    const std::vector<std::pair<double, int>> steps = {
+        {-6.0, 10}, {-5.0, 30}, {-4.0, 45}, {-1.0, 70}};
+    EXPECT_EQ(set.front().steps, steps);
+    for (double value = -7.0; value <= 0.0; value += 0.5)
+        for (int inliers = 0; inliers <= 80; inliers += 5) {
+            Score score;
+            score.value = value;
+            score.inlierCount = inliers;
+            const bool beaten = std::any_of(offered.begin(), offered.end(), [&](const auto& c) {
+                return c.first <= value && c.second >= inliers;
+            });
+            CandidateSet copy = set;
+            EXPECT_EQ(!copy.add(Model(), score), beaten) << value << " " << inliers;
+            EXPECT_EQ(set.front().mostInliersAtOrBelow(value) >= inliers, beaten)
+                << value << " " << inliers;
+        }
+    Score undefined;
+    undefined.value = std::numeric_limits<double>::quiet_NaN();
+    undefined.inlierCount = 1;
+    EXPECT_EQ(set.front().mostInliersAtOrBelow(undefined.value), -1);
+    EXPECT_TRUE(set.add(Model(), undefined)); // beaten by no member, and it makes no step
+    EXPECT_EQ(set.front().steps, steps);
 }
 
 TEST(Rcme_Parameterization, motion_jacobian_matches_finite_differences)

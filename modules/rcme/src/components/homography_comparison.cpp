@@ -456,17 +456,9 @@ std::vector<Model> homographyMotions(const TwoViewData& data, const Eigen::Matri
 
 namespace {
 
-// Without K, the share of the compared points within H's band from which plane and parallax
-// decides even when F wins GRIC: then at most a fifth of F's support lies off the plane, and
-// GRIC's margin over so few points is a draw. A pure rotation (H holds 80-90 % of the points F or
-// H explain, F's band also holding outliers along its lines) came back as success on a third of
-// the scenes with 60 true points (doc/f_only.md, "A dominant homography without K").
-constexpr double kPlaneParallaxShare = 0.8;
-
 // The post-loop test of Params::degeneracyTest: the comparison above, and what the model space
-// leaves determined when the homography wins (without K also when it holds most points: plane
-// and parallax is a significance test of its own; with K a plane's answer is its two motions,
-// for a plane that wins).
+// leaves determined when the homography wins, or holds the share of the points the space asks
+// for (ModelSpace::homographyShareToResolve).
 class HomographyDegeneracyTest final : public EstimationStage
 {
 public:
@@ -474,9 +466,8 @@ public:
     {
         const HomographyComparison homography =
             compareWithHomography(context.data, estimate.model.F, estimate.mask);
-        const bool dominantPlane =
-            !context.data.calibrated && homography.homographyShare >= kPlaneParallaxShare;
-        if (!homography.homographyExplainsInliers && !dominantPlane)
+        if (!homography.homographyExplainsInliers &&
+            homography.homographyShare < context.space.homographyShareToResolve())
             return {};
         return context.space.resolveHomography(context.data, context.refinement, context.scorer,
                                                homography.H, estimate);

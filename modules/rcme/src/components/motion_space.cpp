@@ -13,6 +13,8 @@
 #include "framework/refinement.hpp"
 #include "geometry/epipolar.hpp"
 
+#include <limits>
+
 namespace cv {
 namespace rcme {
 namespace detail {
@@ -174,6 +176,13 @@ public:
                                   "as a motion: R is determined, the translation is not",
                                   estimate.model};
         return outcome;
+    }
+
+    // A plane's answer with K is its motions (two of them fit it), asked only of a plane that
+    // explains the inliers as well as the motion.
+    double homographyShareToResolve() const override
+    {
+        return std::numeric_limits<double>::infinity();
     }
 
     // The final fit moved the motion: the inliers it leaves in front of both cameras are

@@ -97,7 +97,8 @@ private:
         if (reachable >= bar.inliersThatMatter)
             return false;
         return reachable < minimalSupport_ ||
-               reachable <= bar.inliersDominatingAt(cost / thresholdSquared_);
+               (bar.front &&
+                reachable <= bar.front->mostInliersAtOrBelow(cost / thresholdSquared_));
     }
 
     double thresholdSquared_;

@@ -3,15 +3,17 @@
 
 #include "framework/candidate_set.hpp"
 
+#include <algorithm>
+#include <cmath>
+
 namespace cv {
 namespace rcme {
 namespace detail {
 
 bool CandidateSet::add(const Model& model, const Score& score)
 {
-    for (const Candidate& c : front_)
-        if (c.score.value <= score.value && c.score.inlierCount >= score.inlierCount)
-            return false;
+    if (steps_.mostInliersAtOrBelow(score.value) >= score.inlierCount)
+        return false;
     front_.erase(std::remove_if(front_.begin(), front_.end(),
                                 [&](const Candidate& c) {
                                     return score.value <= c.score.value &&
@@ -19,6 +21,14 @@ bool CandidateSet::add(const Model& model, const Score& score)
                                 }),
                  front_.end());
     front_.push_back({model, score});
+    // A member of NaN value refuses nothing (no value is at least it), so it makes no step.
+    steps_.steps.clear();
+    for (const Candidate& c : front_)
+        if (!std::isnan(c.score.value))
+            steps_.steps.emplace_back(c.score.value, c.score.inlierCount);
+    std::sort(steps_.steps.begin(), steps_.steps.end());
+    for (size_t i = 1; i < steps_.steps.size(); ++i)
+        steps_.steps[i].second = std::max(steps_.steps[i].second, steps_.steps[i - 1].second);
     return true;
 }
 
@@ -30,16 +40,6 @@ const CandidateSet::Candidate* CandidateSet::best(const Scorer& scorer) const
         if (scorer.isStillCandidate(c.score) && (!best || c.score.isBetterThan(best->score)))
             best = &c;
     return best;
-}
-
-void CandidateSet::frontSteps(std::vector<std::pair<double, int>>& steps) const
-{
-    steps.clear();
-    for (const Candidate& c : front_)
-        steps.emplace_back(c.score.value, c.score.inlierCount);
-    std::sort(steps.begin(), steps.end());
-    for (size_t i = 1; i < steps.size(); ++i)
-        steps[i].second = std::max(steps[i].second, steps[i - 1].second);
 }
 
 } // namespace detail

@@ -28,7 +28,11 @@ public:
     };
 
     //! Room for a front far larger than seen in practice, so adding rarely allocates.
-    CandidateSet() { front_.reserve(32); }
+    CandidateSet()
+    {
+        front_.reserve(32);
+        steps_.steps.reserve(32);
+    }
 
     //! Adds a candidate unless an earlier one is at least as good in both score and inlier
     //! count (ties keep the earliest). Returns whether it was added.
@@ -37,11 +41,12 @@ public:
     //! The candidate of least score that `scorer` still accepts, or null.
     const Candidate* best(const Scorer& scorer) const;
 
-    //! The front as HypothesisBar::front: what add() would refuse.
-    void frontSteps(std::vector<std::pair<double, int>>& steps) const;
+    //! What add() refuses, as steps (the loop's HypothesisBar reads it).
+    const CandidateFront& front() const { return steps_; }
 
 private:
     std::vector<Candidate> front_;
+    CandidateFront steps_; //!< front_ as steps, rebuilt when it changes
 };
 
 } // namespace detail

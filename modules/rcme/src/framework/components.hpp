@@ -70,31 +70,39 @@ public:
     virtual std::unique_ptr<ModelVerifier> clone() const = 0;
 };
 
-/** What a hypothesis of the loop must reach to change the run (HypothesisSearch), taken before a
-batch of hypotheses is evaluated; read by Scorer::evaluateUpTo to stop reading a hypothesis that
-cannot. Both only tighten as the batch is committed, so a hypothesis out of reach then stays so. */
-struct HypothesisBar
+/** What the candidate set refuses (CandidateSet keeps it and decides by it): its members as steps
+of (score value, most inliers among the members of at most that value), values increasing. A
+hypothesis of value v and n inliers is refused when some member is at least as good in both,
+that is when mostInliersAtOrBelow(v) >= n. */
+struct CandidateFront
 {
-    //! The inlier count from which a hypothesis matters by its count alone: a new most-supported
-    //! hypothesis, or a rival the ambiguity test would keep.
-    int inliersThatMatter = 0;
-    /** The candidate set's front (CandidateSet::add keeps what no candidate beats in both score
-    and inlier count) as steps of (score value, most inliers among the candidates of at most that
-    value), values increasing: a hypothesis of value v and n inliers is refused when a step has
-    value <= v and inliers >= n. Empty while there is no candidate. */
-    std::vector<std::pair<double, int>> front;
+    std::vector<std::pair<double, int>> steps;
 
-    //! The most inliers of a candidate whose value is at most `value`, or -1 if there is none.
-    int inliersDominatingAt(double value) const
+    //! The most inliers of a member whose value is at most `value`, or -1 if there is none (a
+    //! NaN value is beaten by no member).
+    int mostInliersAtOrBelow(double value) const
     {
         int most = -1;
-        for (const auto& [stepValue, inliers] : front) {
-            if (stepValue > value)
+        for (const auto& [stepValue, inliers] : steps) {
+            if (!(stepValue <= value))
                 break;
             most = inliers;
         }
         return most;
     }
+};
+
+/** What a hypothesis of the loop must reach to change the run (HypothesisSearch), set before a
+batch of hypotheses is evaluated; read by Scorer::evaluateUpTo to stop reading a hypothesis that
+cannot. Nothing is committed while a batch is evaluated, and both only tighten as it is, so a
+hypothesis out of reach then stays so. */
+struct HypothesisBar
+{
+    //! The inlier count from which a hypothesis matters by its count alone: a new most-supported
+    //! hypothesis, or a rival the ambiguity test would keep.
+    int inliersThatMatter = 0;
+    //! The candidate set's front (null: none given), for a scorer that ranks by another score.
+    const CandidateFront* front = nullptr;
 };
 
 /** Scores hypotheses and classifies points. A score is computed in two steps so that hypotheses

@@ -52,14 +52,16 @@ bool usesSprt(const Params& params, const TwoViewData& data)
     }
 }
 
-// Params::cleanSampleSuccessRate's default (0). With K a clean 5-point sample often fits a wrong
-// motion (doc/results.md); without K the classic bound's third of the samples changed no status
-// of the F-only suites and saved a tenth of the call on their real pairs (doc/f_only.md).
+// Params::cleanSampleSuccessRate's default (0): with K a clean 5-point sample often fits a wrong
+// motion (doc/results.md); without K the classic bound (1), whose third of the samples changed no
+// status of the F-only suites and saved a tenth of the call on their real pairs (doc/f_only.md).
+constexpr double kCalibratedCleanSampleSuccessRate = 0.3;
+
 double cleanSampleSuccessRate(const Params& params, const TwoViewData& data)
 {
     if (params.cleanSampleSuccessRate > 0)
         return params.cleanSampleSuccessRate;
-    return data.calibrated ? 0.3 : 1.0;
+    return data.calibrated ? kCalibratedCleanSampleSuccessRate : 1.0;
 }
 
 // Params::scoring of METHOD_STANDARD. With K the count is kept: its bail-out stops a hypothesis

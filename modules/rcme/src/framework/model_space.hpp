@@ -53,6 +53,9 @@ public:
     virtual StageOutcome resolveHomography(const TwoViewData& data, const Refinement& refinement,
                                            Scorer& scorer, const Eigen::Matrix3d& H,
                                            const Estimate& estimate) const = 0;
+    /** The share of the points F or H explain that H must hold for resolveHomography to decide
+    even when F wins GRIC (infinity: only when H wins). */
+    virtual double homographyShareToResolve() const = 0;
 
     /** The last decision, after the final fit and the decisions: the recoverPose mask
     (StageOutcome::inFront) and the status it leaves. */

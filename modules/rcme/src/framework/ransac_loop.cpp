@@ -118,7 +118,6 @@ public:
             slot.bandInliers.resize(solutions);
         }
         innerDraw_.resize(static_cast<size_t>(c.solver->sampleSize()));
-        bar_.front.reserve(32); // room for a front far larger than seen in practice
     }
 
     void run(SearchResult& result)
@@ -169,9 +168,9 @@ private:
             laneCount);
     }
 
-    /* What a hypothesis must reach to change the run (HypothesisBar), taken before a batch is
+    /* What a hypothesis must reach to change the run (HypothesisBar), set before a batch is
     evaluated: the least inlier count of a new most-supported hypothesis or of a rival
-    RivalMotions would keep, and the candidate set's front. */
+    RivalMotions would keep, and the candidate set's front (which the set keeps). */
     void setBar(const SearchResult& result)
     {
         int least = result.mostSupportedInliers + 1;
@@ -179,7 +178,7 @@ private:
             least =
                 std::min(least, rivals_->leastSupportConsidered(c_.scorer->ranksByInlierCount()));
         bar_.inliersThatMatter = least;
-        result.candidates.frontSteps(bar_.front);
+        bar_.front = &result.candidates.front();
     }
 
     void evaluate(int firstIteration, int count)
