@@ -11,6 +11,7 @@
 #include "test_precomp.hpp"
 
 #include <algorithm>
+#include <cstring>
 #include <functional>
 #include <iostream>
 #include <type_traits>
@@ -184,6 +185,25 @@ bool maskLayoutMayDiffer(const std::string& caseName)
 {
     return caseName.find("few") != std::string::npos ||
            caseName.find("usac maxIterations") != std::string::npos;
+}
+
+// OpenCV 4.6's PROSAC sampler reads one int past the end of a vector (valgrind, on this test's 60
+// clean points); under ASan that read lands on an unmapped page now and then and the test dies
+// inside OpenCV. So the OpenCV side of a PROSAC case is OpenCV's answer to the same call with its
+// default sampler: accepting or rejecting arguments and the mask's layout do not depend on the
+// sampler. OpenCV 5.1 reads within bounds and is called as it is; 4.x after 4.6 is not checked.
+std::string opencvCaseCalledFor(const std::string& caseName)
+{
+#if CV_VERSION_MAJOR < 5
+    const std::pair<const char*, const char*> twins[] = {{"USAC_PROSAC", "USAC_DEFAULT"},
+                                                         {"usac PROSAC", "usac default"}};
+    for (const auto& twin : twins) {
+        const size_t at = caseName.find(twin.first);
+        if (at != std::string::npos)
+            return std::string(caseName).replace(at, std::strlen(twin.first), twin.second);
+    }
+#endif
+    return caseName;
 }
 
 // A case's call through one namespace; a case whose lambda returns a cv::Mat (its F or E) has it
@@ -580,7 +600,11 @@ TEST(Rcme_OpenCVParity, both_accept_or_both_reject_and_masks_have_opencvs_layout
             EXPECT_EQ(outcomeName(rc.outcome), std::string(outcomeName(d->rcme))) << rc.what;
             continue;
         }
-        const CallResult cv = runCall(c.opencv);
+        const std::string opencvName = opencvCaseCalledFor(c.name);
+        const auto opencvCase = std::find_if(cases.begin(), cases.end(),
+                                             [&](const Case& o) { return o.name == opencvName; });
+        ASSERT_NE(opencvCase, cases.end()) << opencvName;
+        const CallResult cv = runCall(opencvCase->opencv);
         if (d) {
             EXPECT_EQ(outcomeName(cv.outcome), std::string(outcomeName(d->opencv))) << cv.what;
             EXPECT_EQ(outcomeName(rc.outcome), std::string(outcomeName(d->rcme))) << rc.what;
