@@ -10,6 +10,7 @@
 
 #include "framework/model.hpp"
 
+#include <limits>
 #include <vector>
 
 namespace cv {
@@ -30,13 +31,17 @@ struct HomographyComparison
     //! The share of the compared points (those either model explains) within H's band.
     double homographyShare = 0.0;
     Eigen::Matrix3d H = Eigen::Matrix3d::Zero(); //!< the homography (pixels), when fitted
+    int comparedPoints = 0; //!< the points either model explains, over which GRIC is summed
 };
 /** Torr's GRIC of F and of a homography fitted (RANSAC) to the method's inliers `mask` and F's
 support (the points within data.threshold of it), over the points either model explains, with
 the noise of the homography's inliers (at most data.sigma); with fewer than 8 points or no
-homography, nothing is flagged. */
-HomographyComparison compareWithHomography(const TwoViewData& data, const Eigen::Matrix3d& F,
-                                           const std::vector<uchar>& mask);
+homography, nothing is flagged. `shareThatDecides`: the homography share the caller acts on
+(ModelSpace::homographyShareToResolve), none by default. */
+HomographyComparison
+compareWithHomography(const TwoViewData& data, const Eigen::Matrix3d& F,
+                      const std::vector<uchar>& mask,
+                      double shareThatDecides = std::numeric_limits<double>::infinity());
 
 //! With K, the inliers against a rotation about the camera centre (x2 ~ K R K^-1 x1).
 struct RotationComparison
