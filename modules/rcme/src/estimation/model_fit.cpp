@@ -197,6 +197,12 @@ void normalEquations(const TwoViewData& data, const std::vector<int>& inliers,
     }
 }
 
+// A step that lowers the cost by less than this share of it is the last. The cost is about
+// n sigma^2, so such a step moves the model by about sqrt(1e-8 n) of its standard deviations
+// (0.003 at n = 1000); the iterations that used to follow it (to 1e-12) were a fifth of all
+// (doc/performance.md, "Levenberg-Marquardt's last steps").
+constexpr double kNegligibleCostDecrease = 1e-8;
+
 // Levenberg-Marquardt with multiplicative damping on the diagonal, on the loss's reweighted
 // system. Returns the final cost.
 template <class Problem, class Loss = SquaredLoss>
@@ -220,7 +226,7 @@ double levenbergMarquardt(const TwoViewData& data, const std::vector<int>& inlie
             const double candidateCost = sampsonCost(data, inliers, problem.propose(delta), loss);
             if (candidateCost < cost) {
                 problem.accept();
-                improved = cost - candidateCost > 1e-12 * cost;
+                improved = cost - candidateCost > kNegligibleCostDecrease * cost;
                 cost = candidateCost;
                 damping = std::max(1e-9, damping * 0.1);
                 break;
