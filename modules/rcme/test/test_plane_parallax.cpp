@@ -172,6 +172,14 @@ TEST(Rcme_PlaneParallax, the_quick_search_finds_the_plane_among_more_outliers)
             }
         EXPECT_LT(std::sqrt(squared / probes), 1.0) << "seed " << seed;
     }
+    // Too few correspondences for a homography, or views of different sizes: no answer.
+    const std::vector<Point2d> three = {{0, 0}, {100, 0}, {0, 100}},
+                               four = {{0, 0}, {100, 0}, {0, 100}, {100, 100}};
+    Eigen::Matrix3d H;
+    EXPECT_FALSE(cv::rcme::detail::dominantHomography(three, three, transferThreshold, H));
+    EXPECT_FALSE(cv::rcme::detail::dominantHomography(four, three, transferThreshold, H));
+    EXPECT_TRUE(cv::rcme::detail::dominantHomography(four, four, transferThreshold, H));
+    EXPECT_LT((H - Eigen::Matrix3d::Identity()).norm(), 1e-9);
 }
 
 TEST(Rcme_PlaneParallax, the_homography_explains_the_inliers_of_these_scenes)

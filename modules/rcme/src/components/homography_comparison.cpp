@@ -151,9 +151,7 @@ bool someHomographyHoldsHalf(const std::vector<Point2d>& candidates1,
             const int count = static_cast<int>(points1.size());
             for (int i = 0; i < count && 2 * (byH + count - i) >= either + count - i; ++i) {
                 const size_t k = static_cast<size_t>(i);
-                const Eigen::Vector3d x = H * Eigen::Vector3d(points1[k].x, points1[k].y, 1.0);
-                const double dx = x.x() / x.z() - points2[k].x, dy = x.y() / x.z() - points2[k].y;
-                const bool held = dx * dx + dy * dy <= threshold2;
+                const bool held = isTransferredWithin(H, points1[k], points2[k], threshold2);
                 byH += held;
                 either += held || byF[k];
             }

@@ -37,7 +37,9 @@ struct HomographyComparison
 support (the points within data.threshold of it), over the points either model explains, with
 the noise of the homography's inliers (at most data.sigma); with fewer than 8 points or no
 homography, nothing is flagged. `shareThatDecides`: the homography share the caller acts on
-(ModelSpace::homographyShareToResolve), none by default. */
+(ModelSpace::homographyShareToResolve), none by default; the quick search
+(estimation/homography_search.hpp) answers alone only where its homography loses GRIC clearly and
+holds a share well below it, cv::findHomography's homography decides elsewhere. */
 HomographyComparison
 compareWithHomography(const TwoViewData& data, const Eigen::Matrix3d& F,
                       const std::vector<uchar>& mask,

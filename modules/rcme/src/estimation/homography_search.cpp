@@ -45,10 +45,7 @@ int transferInliers(const std::vector<Point2d>& from, const std::vector<Point2d>
         inliers->clear();
     int count = 0;
     for (size_t i = 0; i < from.size(); ++i) {
-        const double z = H(2, 0) * from[i].x + H(2, 1) * from[i].y + H(2, 2);
-        const double dx = (H(0, 0) * from[i].x + H(0, 1) * from[i].y + H(0, 2)) / z - to[i].x;
-        const double dy = (H(1, 0) * from[i].x + H(1, 1) * from[i].y + H(1, 2)) / z - to[i].y;
-        if (dx * dx + dy * dy <= threshold2) {
+        if (isTransferredWithin(H, from[i], to[i], threshold2)) {
             ++count;
             if (inliers)
                 inliers->push_back(static_cast<int>(i));

@@ -38,13 +38,23 @@ do not determine one with it, e.g. three on a line). */
 bool homographyOfFour(const std::vector<Point2d>& from, const std::vector<Point2d>& to,
                       const int sample[4], Eigen::Matrix3d& H);
 
+//! Whether H takes p within squared distance `threshold2` of q (the transfer error in image 2).
+inline bool isTransferredWithin(const Eigen::Matrix3d& H, const Point2d& p, const Point2d& q,
+                                double threshold2)
+{
+    const Eigen::Vector3d x = H * Eigen::Vector3d(p.x, p.y, 1.0);
+    const double dx = x.x() / x.z() - q.x, dy = x.y() / x.z() - q.y;
+    return dx * dx + dy * dy <= threshold2;
+}
+
 /** The homography that holds the most of the correspondences within `transferThreshold` (the
 distance of x2 from H x1 in image 2, in pixels, as cv::findHomography measures it), H(2, 2) = 1:
 RANSAC over four-point samples that keep their orientation, at most 200 and until the classic
 bound for confidence 0.999, then least squares (the normalized direct linear transform) on the
-points it holds, again until they stop growing; a fixed seed. The homography test's quick
-search: a fraction of cv::findHomography's time (no eigenproblem per sample, no final
-Levenberg-Marquardt fit). False when no sample holds four points. */
+points it holds, taken again until they settle (at most five refits; one that holds fewer points
+is not taken); a fixed seed. The homography test's quick search: a fraction of
+cv::findHomography's time (no eigenproblem per sample, no final Levenberg-Marquardt fit). False
+with fewer than four correspondences, sizes that differ, or no sample holding four points. */
 bool dominantHomography(const std::vector<Point2d>& points1, const std::vector<Point2d>& points2,
                         double transferThreshold, Eigen::Matrix3d& H);
 
