@@ -277,45 +277,43 @@ TEST(Rcme_SampsonBlocks, equal_the_per_point_functions_bit_for_bit)
     }
 }
 
-// accumulateNormalEquations sums each entry of J^T J and J^T r in the points' order: the bits of
-// the loop over the points it replaces, over several blocks and with invalid points skipped.
-TEST(Rcme_SampsonBlocks, normal_equations_sum_as_the_loop_over_the_points)
+// accumulateNormalEquations sums each entry of J^T J and J^T r of a block in four partial sums
+// (point j into sum j % 4), added to the running entry as (s0 + s1) + (s2 + s3): the same bits in
+// both clones and on every machine. An invalid point comes as zeros and adds nothing.
+TEST(Rcme_SampsonBlocks, normal_equations_sum_in_four_lanes_per_block)
 {
     cv::RNG rng(41);
     for (int P : {5, 7}) {
         std::vector<double> normal(static_cast<size_t>(P * (P + 1)), 0.0);
-        std::vector<double> upper(static_cast<size_t>(P * P), 0.0), rhs(P, 0.0);
+        std::vector<double> expected(normal.size(), 0.0);
         for (int blockIndex = 0; blockIndex < 20; ++blockIndex) {
             const int count = rng.uniform(1, kSampsonBlock + 1);
             double distance[kSampsonBlock], gradients[7 * kSampsonBlock];
-            uchar valid[kSampsonBlock];
             for (int j = 0; j < count; ++j) {
-                distance[j] = rng.gaussian(1.0) * std::pow(10.0, rng.uniform(-3, 3));
-                valid[j] = rng.uniform(0, 10) > 0;
+                const bool valid = rng.uniform(0, 10) > 0;
+                distance[j] = valid ? rng.gaussian(1.0) * std::pow(10.0, rng.uniform(-3, 3)) : 0.0;
                 for (int k = 0; k < P; ++k)
                     gradients[k * kSampsonBlock + j] =
-                        rng.gaussian(1.0) * std::pow(10.0, rng.uniform(-6, 6));
+                        valid ? rng.gaussian(1.0) * std::pow(10.0, rng.uniform(-6, 6)) : 0.0;
             }
-            accumulateNormalEquations(P, distance, gradients, valid, count, normal.data());
-            for (int j = 0; j < count; ++j) {
-                if (!valid[j])
-                    continue;
-                for (int a = 0; a < P; ++a) {
-                    const double ga = gradients[a * kSampsonBlock + j];
-                    for (int b = a; b < P; ++b)
-                        upper[a * P + b] += ga * gradients[b * kSampsonBlock + j];
-                    rhs[a] += ga * distance[j];
+            accumulateNormalEquations(P, distance, gradients, count, normal.data());
+            for (int a = 0; a < P; ++a)
+                for (int b = a; b <= P; ++b) {
+                    double lanes[4] = {0.0, 0.0, 0.0, 0.0};
+                    for (int j = 0; j < count; ++j)
+                        lanes[j % 4] += gradients[a * kSampsonBlock + j] *
+                                        (b < P ? gradients[b * kSampsonBlock + j] : distance[j]);
+                    expected[static_cast<size_t>(a * (P + 1) + b)] +=
+                        (lanes[0] + lanes[1]) + (lanes[2] + lanes[3]);
                 }
+        }
+        for (int a = 0; a < P; ++a)
+            for (int b = a; b <= P; ++b) {
+                const size_t e = static_cast<size_t>(a * (P + 1) + b);
+                EXPECT_EQ(std::memcmp(&normal[e], &expected[e], sizeof(double)), 0)
+                    << "P " << P << " entry " << a << ", " << b << ": " << normal[e] << " "
+                    << expected[e];
             }
-        }
-        for (int a = 0; a < P; ++a) {
-            EXPECT_EQ(std::memcmp(&normal[a * (P + 1) + P], &rhs[a], sizeof(double)), 0)
-                << "P " << P << " row " << a;
-            for (int b = a; b < P; ++b)
-                EXPECT_EQ(std::memcmp(&normal[a * (P + 1) + b], &upper[a * P + b], sizeof(double)),
-                          0)
-                    << "P " << P << " entry " << a << ", " << b;
-        }
     }
 }
 

@@ -165,9 +165,9 @@ inline void weighBlock(const CauchyLoss& loss, int parameters, int count, double
 }
 
 // Gauss-Newton system J^T J, J^T r of the Sampson distances at the problem's current state. The
-// gradients come a block of points at a time (sampsonGradientsOfBlock, vectorized); the sums run
-// over the points in order (accumulateNormalEquations), each entry adding g_a g_b as a full outer
-// product would: the same bits as sampsonDistanceAndGradient's per point.
+// distances and gradients come a block of points at a time (sampsonGradientsOfBlock, vectorized;
+// the bits of sampsonDistanceAndGradient's per point), and so do the sums of their products
+// (accumulateNormalEquations: the upper triangle, in four partial sums per entry).
 template <class Problem, class Loss = SquaredLoss>
 void normalEquations(const TwoViewData& data, const std::vector<int>& inliers,
                      const Problem& problem,
@@ -188,7 +188,7 @@ void normalEquations(const TwoViewData& data, const std::vector<int>& inliers,
         sampsonGradientsOfBlock(F, dF, P, block.x1, block.y1, block.x2, block.y2, count, distance,
                                 gradients, valid);
         weighBlock(loss, P, count, distance, gradients);
-        accumulateNormalEquations(P, distance, gradients, valid, count, &normal[0][0]);
+        accumulateNormalEquations(P, distance, gradients, count, &normal[0][0]);
     }
     for (int a = 0; a < P; ++a) {
         Jtr(a) = normal[a][P];

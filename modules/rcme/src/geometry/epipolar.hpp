@@ -5,6 +5,7 @@
 #define OPENCV_RCME_GEOMETRY_EPIPOLAR_HPP
 
 #include "geometry/core.hpp"
+#include "geometry/vector_clones.hpp"
 
 namespace cv {
 namespace rcme {
@@ -36,6 +37,40 @@ inline double sampsonDistanceSquared(const Eigen::Matrix3d& F, const Eigen::Vect
     return jj > 0 ? r * r / jj : std::numeric_limits<double>::infinity();
 }
 
+/** The gradient of the Sampson distance d = r / |J| of x1 = (a, b), x2 = (c, e) with respect to the
+nine entries of F, row-major: dd/dF(m, n) = x2_m x1_n / |J| - w (f_m x1_n [m < 2] + t_n x2_m
+[n < 2]), with f = F x1, t = F^T x2 (their first two entries), w = d / |J|^2 and
+`inverseNorm` = 1 / |J|. A model's gradient is then one dot product of nine per parameter
+(projectEntryGradient), where the derivative along each direction dF would take two matrix-vector
+products and two divisions. Shared by sampsonDistanceAndGradient and the fits' block kernel
+(geometry/sampson_gradients.cpp), which give the same bits. */
+RCME_ALWAYS_INLINE void sampsonEntryGradient(double a, double b, double c, double e, double f0,
+                                             double f1, double t0, double t1, double inverseNorm,
+                                             double w, double gradient[9])
+{
+    const double ca = c * a, cb = c * b, ea = e * a, eb = e * b;
+    gradient[0] = ca * inverseNorm - w * (f0 * a + t0 * c);
+    gradient[1] = cb * inverseNorm - w * (f0 * b + t1 * c);
+    gradient[2] = c * inverseNorm - w * f0;
+    gradient[3] = ea * inverseNorm - w * (f1 * a + t0 * e);
+    gradient[4] = eb * inverseNorm - w * (f1 * b + t1 * e);
+    gradient[5] = e * inverseNorm - w * f1;
+    gradient[6] = a * inverseNorm - w * t0;
+    gradient[7] = b * inverseNorm - w * t1;
+    gradient[8] = inverseNorm;
+}
+
+//! The derivative along a direction of F (its nine entries row-major) of what `entryGradient` is
+//! the gradient of: the dot product, summed in the entries' order.
+RCME_ALWAYS_INLINE double projectEntryGradient(const double direction[9],
+                                               const double entryGradient[9])
+{
+    double sum = direction[0] * entryGradient[0];
+    for (int j = 1; j < 9; ++j)
+        sum += direction[j] * entryGradient[j];
+    return sum;
+}
+
 /** Sampson distance d = r/|J| and its gradient with respect to P model parameters, given the
 derivatives dF[k] of F along them. Returns false where J vanishes. */
 template <int P>
@@ -50,14 +85,17 @@ bool sampsonDistanceAndGradient(const Eigen::Matrix3d& F, const Eigen::Matrix3d*
         Fx1.x() * Fx1.x() + Fx1.y() * Fx1.y() + Ftx2.x() * Ftx2.x() + Ftx2.y() * Ftx2.y();
     if (!(jj > 0))
         return false;
-    const double norm = std::sqrt(jj);
-    distance = r / norm;
+    const double inverseNorm = 1.0 / std::sqrt(jj);
+    distance = r * inverseNorm;
+    double entries[9];
+    sampsonEntryGradient(x1.x(), x1.y(), x2.x(), x2.y(), Fx1.x(), Fx1.y(), Ftx2.x(), Ftx2.y(),
+                         inverseNorm, distance * inverseNorm * inverseNorm, entries);
     for (int k = 0; k < P; ++k) {
-        const Eigen::Vector3d dFx1 = dF[k] * p1, dFtx2 = dF[k].transpose() * p2;
-        const double dr = p2.dot(dFx1);
-        const double djj = 2 * (Fx1.x() * dFx1.x() + Fx1.y() * dFx1.y() + Ftx2.x() * dFtx2.x() +
-                                Ftx2.y() * dFtx2.y());
-        gradient[k] = dr / norm - r * djj / (2 * jj * norm);
+        double direction[9];
+        for (int m = 0; m < 3; ++m)
+            for (int n = 0; n < 3; ++n)
+                direction[3 * m + n] = dF[k](m, n);
+        gradient[k] = projectEntryGradient(direction, entries);
     }
     return true;
 }

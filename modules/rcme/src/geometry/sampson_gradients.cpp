@@ -7,6 +7,7 @@
 
 #include "geometry/sampson_gradients.hpp"
 
+#include "geometry/epipolar.hpp"
 #include "geometry/vector_clones.hpp"
 
 namespace cv {
@@ -19,7 +20,7 @@ namespace {
 struct BlockTerms
 {
     double f0[kSampsonBlock], f1[kSampsonBlock], t0[kSampsonBlock], t1[kSampsonBlock];
-    double r[kSampsonBlock], norm[kSampsonBlock], scale[kSampsonBlock];
+    double inverseNorm[kSampsonBlock], w[kSampsonBlock]; // 1 / |J| and d / |J|^2
 };
 
 // F x1 (rows 0 and 1), F^T x2 (rows 0 and 1), the residual r = x2^T F x1 and |J|^2 of one point.
@@ -52,31 +53,34 @@ distancesOfBlock(const double* __restrict f, const double* __restrict x1,
 {
     for (int i = 0; i < count; ++i) {
         const PointTerms p = pointTerms(f, x1[i], y1[i], x2[i], y2[i]);
-        const double norm = std::sqrt(p.jj);
+        // Zero where J vanishes: the point's distance and gradients are then zeros.
+        const double inverseNorm = p.jj > 0 ? 1.0 / std::sqrt(p.jj) : 0.0;
         valid[i] = p.jj > 0 ? 1 : 0;
-        distance[i] = p.r / norm;
+        distance[i] = p.r * inverseNorm;
         terms.f0[i] = p.f0;
         terms.f1[i] = p.f1;
         terms.t0[i] = p.t0;
         terms.t1[i] = p.t1;
-        terms.r[i] = p.r;
-        terms.norm[i] = norm;
-        terms.scale[i] = 2 * p.jj * norm;
+        terms.inverseNorm[i] = inverseNorm;
+        terms.w[i] = distance[i] * inverseNorm * inverseNorm;
     }
 }
 
+// Each point's gradient over F's nine entries, then its dot product with each of the P
+// directions (rows of `directions`, row-major entries).
+template <int P>
 RCME_VECTOR_CLONES RCME_SPECULATIVE_MATH void
-gradientsOfBlock(const double* __restrict d, const double* __restrict x1,
+gradientsOfBlock(const double* __restrict directions, const double* __restrict x1,
                  const double* __restrict y1, const double* __restrict x2,
                  const double* __restrict y2, int count, const BlockTerms& __restrict terms,
-                 double* __restrict gradient)
+                 double* __restrict gradients)
 {
     for (int i = 0; i < count; ++i) {
-        // The same products with dF in place of F: dF x1, dF^T x2 and dr (its jj is not used).
-        const PointTerms q = pointTerms(d, x1[i], y1[i], x2[i], y2[i]);
-        const double djj =
-            2 * (terms.f0[i] * q.f0 + terms.f1[i] * q.f1 + terms.t0[i] * q.t0 + terms.t1[i] * q.t1);
-        gradient[i] = q.r / terms.norm[i] - terms.r[i] * djj / terms.scale[i];
+        double entries[9];
+        sampsonEntryGradient(x1[i], y1[i], x2[i], y2[i], terms.f0[i], terms.f1[i], terms.t0[i],
+                             terms.t1[i], terms.inverseNorm[i], terms.w[i], entries);
+        for (int k = 0; k < P; ++k)
+            gradients[k * kSampsonBlock + i] = projectEntryGradient(directions + 9 * k, entries);
     }
 }
 
@@ -105,27 +109,35 @@ withinDistanceLoop(const double* __restrict f, const double* __restrict a,
     }
 }
 
-// Every entry of the P x (P + 1) system, the lower triangle too: whole rows are vector
-// operations, and a point's products reach each entry in the order of a loop over the points.
-template <int P>
-RCME_VECTOR_CLONES void
-normalEquationsLoop(const double* __restrict distance, const double* __restrict gradients,
-                    const uchar* __restrict valid, int count, double* __restrict normal)
+// sum_j a[j] b[j] over j < count in four partial sums (point j into sum j % 4; the AVX2 clone
+// holds them in one register), added as (s0 + s1) + (s2 + s3): the order is the source's, so both
+// clones give the same bits.
+RCME_ALWAYS_INLINE double dotInLanes(const double* __restrict a, const double* __restrict b,
+                                     int count)
 {
-    double sums[P][P + 1];
-    std::copy(normal, normal + P * (P + 1), &sums[0][0]);
-    for (int j = 0; j < count; ++j) {
-        if (!valid[j])
-            continue;
-        double g[P + 1];
-        for (int k = 0; k < P; ++k)
-            g[k] = gradients[k * kSampsonBlock + j];
-        g[P] = distance[j];
-        for (int a = 0; a < P; ++a)
-            for (int b = 0; b <= P; ++b)
-                sums[a][b] += g[a] * g[b];
+    double s[4] = {0.0, 0.0, 0.0, 0.0};
+    int j = 0;
+    for (; j + 4 <= count; j += 4)
+        for (int l = 0; l < 4; ++l)
+            s[l] += a[j + l] * b[j + l];
+    for (int l = 0; j + l < count; ++l)
+        s[l] += a[j + l] * b[j + l];
+    return (s[0] + s[1]) + (s[2] + s[3]);
+}
+
+// The upper triangle of J^T J and J^T r, an entry at a time over the block's points. An invalid
+// point's distance and gradients are zeros (distancesOfBlock): it adds nothing.
+template <int P>
+RCME_VECTOR_CLONES void normalEquationsLoop(const double* __restrict distance,
+                                            const double* __restrict gradients, int count,
+                                            double* __restrict normal)
+{
+    for (int a = 0; a < P; ++a) {
+        const double* ga = gradients + a * kSampsonBlock;
+        for (int b = a; b < P; ++b)
+            normal[a * (P + 1) + b] += dotInLanes(ga, gradients + b * kSampsonBlock, count);
+        normal[a * (P + 1) + P] += dotInLanes(ga, distance, count);
     }
-    std::copy(&sums[0][0], &sums[0][0] + P * (P + 1), normal);
 }
 
 void rowMajor(const Eigen::Matrix3d& M, double* out)
@@ -147,10 +159,15 @@ void sampsonGradientsOfBlock(const Eigen::Matrix3d& F, const Eigen::Matrix3d* di
     double f[9];
     rowMajor(F, f);
     distancesOfBlock(f, x1, y1, x2, y2, count, terms, distance, valid);
-    for (int k = 0; k < parameters; ++k) {
-        rowMajor(directions[k], f);
-        gradientsOfBlock(f, x1, y1, x2, y2, count, terms, gradients + k * kSampsonBlock);
-    }
+    double rows[7 * 9];
+    for (int k = 0; k < parameters; ++k)
+        rowMajor(directions[k], rows + 9 * k);
+    if (parameters == 5)
+        gradientsOfBlock<5>(rows, x1, y1, x2, y2, count, terms, gradients);
+    else if (parameters == 7)
+        gradientsOfBlock<7>(rows, x1, y1, x2, y2, count, terms, gradients);
+    else
+        CV_Error(Error::StsNotImplemented, "Sampson gradients of 5 or 7 parameters only");
 }
 
 void sampsonDistancesSquaredOfBlock(const Eigen::Matrix3d& F, const double* x1, const double* y1,
@@ -164,13 +181,13 @@ void sampsonDistancesSquaredOfBlock(const Eigen::Matrix3d& F, const double* x1, 
 }
 
 void accumulateNormalEquations(int parameters, const double* distance, const double* gradients,
-                               const uchar* valid, int count, double* normal)
+                               int count, double* normal)
 {
     CV_DbgAssert(count <= kSampsonBlock);
     if (parameters == 5)
-        normalEquationsLoop<5>(distance, gradients, valid, count, normal);
+        normalEquationsLoop<5>(distance, gradients, count, normal);
     else if (parameters == 7)
-        normalEquationsLoop<7>(distance, gradients, valid, count, normal);
+        normalEquationsLoop<7>(distance, gradients, count, normal);
     else
         CV_Error(Error::StsNotImplemented, "normal equations of 5 or 7 parameters only");
 }

@@ -14,9 +14,10 @@ namespace detail {
 (coordinates one array each), with the arithmetic of sampsonDistanceAndGradient point by point:
 the same values to the last bit, four points at a time on AVX2. The inner loop of every least-
 squares fit (local optimisation, refinement, the final fit). `directions` holds the derivatives
-dF[k] of F along the model's parameters, k < parameters <= 7. On return distance[i] and
+dF[k] of F along the model's parameters, k < parameters, 5 or 7. On return distance[i] and
 gradients[k * kSampsonBlock + i] hold point i's d and dd/dp_k, and valid[i] is 0 where J
-vanishes (a point at an epipole: no distance, as sampsonDistanceAndGradient returns false). */
+vanishes (a point at an epipole: no distance, as sampsonDistanceAndGradient returns false; its
+distance and gradients are then zeros, which add nothing to the normal equations). */
 constexpr int kSampsonBlock = 64;
 void sampsonGradientsOfBlock(const Eigen::Matrix3d& F, const Eigen::Matrix3d* directions,
                              int parameters, const double* x1, const double* y1, const double* x2,
@@ -30,12 +31,14 @@ void sampsonDistancesSquaredOfBlock(const Eigen::Matrix3d& F, const double* x1, 
                                     double* distanceSquared);
 
 /** Adds a block's terms to the Gauss-Newton system of the Sampson distances: for each point j
-< count with valid[j], in order, normal[a][b] += g_a g_b and normal[a][P] += g_a d_j, where g_k =
-gradients[k * kSampsonBlock + j], d_j = distance[j] and P = `parameters` (5 or 7); `normal` is P
-rows of P + 1 (J^T J, then J^T r), row-major. Each entry is the sum a point-by-point loop makes, in
-the same order (the same bits); the entries are summed side by side, vectorized. */
+< count, normal[a][b] += g_a g_b (b >= a: the upper triangle of J^T J) and normal[a][P] += g_a d_j,
+where g_k = gradients[k * kSampsonBlock + j], d_j = distance[j] and P = `parameters` (5 or 7);
+`normal` is P rows of P + 1 (J^T J, then J^T r), row-major, and its lower triangle is left as it
+is. Each entry sums the block's points in four partial sums (point j into sum j % 4) and adds
+(s0 + s1) + (s2 + s3): vectorized, and the same bits on every machine. A point to leave out comes
+with zeros (as sampsonGradientsOfBlock gives an invalid one). */
 void accumulateNormalEquations(int parameters, const double* distance, const double* gradients,
-                               const uchar* valid, int count, double* normal);
+                               int count, double* normal);
 
 /** within[i] = 1 where sampsonDistanceSquared(F, points1[i], points2[i]) < thresholdSquared (the
 same bits), 0 elsewhere; `within` is sized to the points. One vectorized pass over a whole set
