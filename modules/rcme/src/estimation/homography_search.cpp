@@ -38,20 +38,27 @@ bool keepsOrientation(const std::vector<Point2d>& from, const std::vector<Point2
 }
 
 // The points of `to` within squared transfer distance `threshold2` of H applied to `from`.
-int transferInliers(const std::vector<Point2d>& from, const std::vector<Point2d>& to,
-                    const Eigen::Matrix3d& H, double threshold2, std::vector<int>* inliers)
+void transferInliers(const std::vector<Point2d>& from, const std::vector<Point2d>& to,
+                     const Eigen::Matrix3d& H, double threshold2, std::vector<int>& inliers)
 {
-    if (inliers)
-        inliers->clear();
-    int count = 0;
-    for (size_t i = 0; i < from.size(); ++i) {
-        if (isTransferredWithin(H, from[i], to[i], threshold2)) {
-            ++count;
-            if (inliers)
-                inliers->push_back(static_cast<int>(i));
-        }
+    inliers.clear();
+    for (size_t i = 0; i < from.size(); ++i)
+        if (isTransferredWithin(H, from[i], to[i], threshold2))
+            inliers.push_back(static_cast<int>(i));
+}
+
+/* The points H transfers within `threshold2`, counted until they can no longer exceed `toBeat`:
+then some count no larger than it (a sample that does not beat the best is dropped either way). */
+int transferredUnlessBeaten(const std::vector<Point2d>& from, const std::vector<Point2d>& to,
+                            const Eigen::Matrix3d& H, double threshold2, int toBeat)
+{
+    const int count = static_cast<int>(from.size());
+    int held = 0;
+    for (int i = 0; i < count && held + (count - i) > toBeat; ++i) {
+        const size_t k = static_cast<size_t>(i);
+        held += isTransferredWithin(H, from[k], to[k], threshold2);
     }
-    return count;
+    return held;
 }
 
 /* Least squares (the direct linear transform) on the correspondences `indices`: the unit vector h
@@ -154,7 +161,7 @@ bool dominantHomography(const std::vector<Point2d>& candidates1,
         if (!keepsOrientation(points1, points2, sample) ||
             !homographyOfFour(points1, points2, sample, candidate))
             continue;
-        const int held = transferInliers(points1, points2, candidate, threshold2, nullptr);
+        const int held = transferredUnlessBeaten(points1, points2, candidate, threshold2, bestHeld);
         if (held > bestHeld) {
             bestHeld = held;
             best = candidate;
@@ -165,12 +172,12 @@ bool dominantHomography(const std::vector<Point2d>& candidates1,
     if (bestHeld < 4)
         return false;
     std::vector<int> held, refitHeld;
-    transferInliers(points1, points2, best, threshold2, &held);
+    transferInliers(points1, points2, best, threshold2, held);
     for (int refit = 0; refit < kMaxRefits; ++refit) {
         Eigen::Matrix3d refitted;
         if (!homographyOfMany(points1, points2, held, refitted))
             break;
-        transferInliers(points1, points2, refitted, threshold2, &refitHeld);
+        transferInliers(points1, points2, refitted, threshold2, refitHeld);
         if (refitHeld.size() < held.size())
             break;
         best = refitted;
