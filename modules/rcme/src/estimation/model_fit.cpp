@@ -96,24 +96,46 @@ struct FundamentalProblem
     }
 };
 
-// The coordinates of inliers[start, start + count) as four arrays, for the block kernels.
-struct CoordinateBlock
+// A fit's points as four coordinate arrays in the indices' order, for the block kernels: gathered
+// once per fit, and every pass of its iterations reads them in place (each pass used to gather
+// them again, a scattered read per point). Per thread and reused: local optimisation fits inside
+// the hypothesis loop, which must not allocate. Valid until the thread's next gathering; the
+// functions below that gather do not call one another while they hold it.
+struct GatheredPoints
 {
-    double x1[kSampsonBlock], y1[kSampsonBlock], x2[kSampsonBlock], y2[kSampsonBlock];
+    std::vector<double> x1, y1, x2, y2;
 
-    int gather(const TwoViewData& data, const std::vector<int>& inliers, size_t start)
+    size_t size() const { return x1.size(); }
+    //! The number of points of the block that starts at `start` (at most kSampsonBlock).
+    int blockSize(size_t start) const
     {
-        const int count = static_cast<int>(std::min<size_t>(kSampsonBlock, inliers.size() - start));
-        for (int j = 0; j < count; ++j) {
-            const auto i = static_cast<size_t>(inliers[start + static_cast<size_t>(j)]);
-            x1[j] = data.points1[i].x();
-            y1[j] = data.points1[i].y();
-            x2[j] = data.points2[i].x();
-            y2[j] = data.points2[i].y();
-        }
-        return count;
+        return static_cast<int>(std::min<size_t>(kSampsonBlock, size() - start));
     }
 };
+
+const GatheredPoints& gatherPoints(const TwoViewData& data, const std::vector<int>& indices)
+{
+    thread_local GatheredPoints gathered;
+    // Room for every point of the data at once: local optimisation's growing inlier sets then
+    // never reallocate.
+    if (gathered.x1.capacity() < data.points1.size())
+        for (std::vector<double>* coordinates :
+             {&gathered.x1, &gathered.y1, &gathered.x2, &gathered.y2})
+            coordinates->reserve(data.points1.size());
+    const size_t n = indices.size();
+    gathered.x1.resize(n);
+    gathered.y1.resize(n);
+    gathered.x2.resize(n);
+    gathered.y2.resize(n);
+    for (size_t k = 0; k < n; ++k) {
+        const auto i = static_cast<size_t>(indices[k]);
+        gathered.x1[k] = data.points1[i].x();
+        gathered.y1[k] = data.points1[i].y();
+        gathered.x2[k] = data.points2[i].x();
+        gathered.y2[k] = data.points2[i].y();
+    }
+    return gathered;
+}
 
 // Least squares: every point weighs alike.
 struct SquaredLoss
@@ -133,15 +155,15 @@ struct CauchyLoss
 
 // The sum of the loss of the Sampson distances, in the inliers' order.
 template <class Loss = SquaredLoss>
-double sampsonCost(const TwoViewData& data, const std::vector<int>& inliers,
-                   const Eigen::Matrix3d& F, const Loss& loss = Loss())
+double sampsonCost(const GatheredPoints& points, const Eigen::Matrix3d& F,
+                   const Loss& loss = Loss())
 {
-    CoordinateBlock block;
     double squared[kSampsonBlock];
     double cost = 0;
-    for (size_t start = 0; start < inliers.size(); start += kSampsonBlock) {
-        const int count = block.gather(data, inliers, start);
-        sampsonDistancesSquaredOfBlock(F, block.x1, block.y1, block.x2, block.y2, count, squared);
+    for (size_t start = 0; start < points.size(); start += kSampsonBlock) {
+        const int count = points.blockSize(start);
+        sampsonDistancesSquaredOfBlock(F, &points.x1[start], &points.y1[start], &points.x2[start],
+                                       &points.y2[start], count, squared);
         for (int j = 0; j < count; ++j)
             cost += loss.cost(squared[j]);
     }
@@ -169,8 +191,7 @@ inline void weighBlock(const CauchyLoss& loss, int parameters, int count, double
 // the bits of sampsonDistanceAndGradient's per point), and so do the sums of their products
 // (accumulateNormalEquations: the upper triangle, in four partial sums per entry).
 template <class Problem, class Loss = SquaredLoss>
-void normalEquations(const TwoViewData& data, const std::vector<int>& inliers,
-                     const Problem& problem,
+void normalEquations(const GatheredPoints& points, const Problem& problem,
                      Eigen::Matrix<double, Problem::kDof, Problem::kDof>& JtJ,
                      Eigen::Matrix<double, Problem::kDof, 1>& Jtr, const Loss& loss = Loss())
 {
@@ -179,14 +200,13 @@ void normalEquations(const TwoViewData& data, const std::vector<int>& inliers,
     const Eigen::Matrix3d F = problem.current();
     Eigen::Matrix3d dF[P];
     problem.derivatives(dF);
-    CoordinateBlock block;
     double distance[B], gradients[P * B];
     uchar valid[B];
     double normal[P][P + 1] = {};
-    for (size_t start = 0; start < inliers.size(); start += B) {
-        const int count = block.gather(data, inliers, start);
-        sampsonGradientsOfBlock(F, dF, P, block.x1, block.y1, block.x2, block.y2, count, distance,
-                                gradients, valid);
+    for (size_t start = 0; start < points.size(); start += B) {
+        const int count = points.blockSize(start);
+        sampsonGradientsOfBlock(F, dF, P, &points.x1[start], &points.y1[start], &points.x2[start],
+                                &points.y2[start], count, distance, gradients, valid);
         weighBlock(loss, P, count, distance, gradients);
         accumulateNormalEquations(P, distance, gradients, count, &normal[0][0]);
     }
@@ -210,12 +230,13 @@ double levenbergMarquardt(const TwoViewData& data, const std::vector<int>& inlie
                           Problem& problem, int maxIterations, const Loss& loss = Loss())
 {
     constexpr int P = Problem::kDof;
-    double cost = sampsonCost(data, inliers, problem.current(), loss);
+    const GatheredPoints& points = gatherPoints(data, inliers);
+    double cost = sampsonCost(points, problem.current(), loss);
     double damping = 1e-3;
     Eigen::Matrix<double, P, P> JtJ;
     Eigen::Matrix<double, P, 1> Jtr;
     for (int iteration = 0; iteration < maxIterations; ++iteration) {
-        normalEquations(data, inliers, problem, JtJ, Jtr, loss);
+        normalEquations(points, problem, JtJ, Jtr, loss);
         bool improved = false;
         while (damping < 1e12) {
             Eigen::Matrix<double, P, P> A = JtJ;
@@ -223,7 +244,7 @@ double levenbergMarquardt(const TwoViewData& data, const std::vector<int>& inlie
             const Eigen::Matrix<double, P, 1> delta = A.ldlt().solve(-Jtr);
             if (!delta.allFinite())
                 break;
-            const double candidateCost = sampsonCost(data, inliers, problem.propose(delta), loss);
+            const double candidateCost = sampsonCost(points, problem.propose(delta), loss);
             if (candidateCost < cost) {
                 problem.accept();
                 improved = cost - candidateCost > kNegligibleCostDecrease * cost;
@@ -307,10 +328,10 @@ setUncertainty(const TwoViewData& data, const std::vector<int>& indices, const P
     Eigen::Matrix<double, P, P> JtJ;
     Eigen::Matrix<double, P, 1> Jtr;
     if (everyPoint) {
-        normalEquations(data, indices, problem, JtJ, Jtr);
+        normalEquations(gatherPoints(data, indices), problem, JtJ, Jtr);
     } else {
         const IteratedPoints iterated = iteratedPoints(data, indices);
-        normalEquations(iterated.data, iterated.indices, problem, JtJ, Jtr);
+        normalEquations(gatherPoints(iterated.data, iterated.indices), problem, JtJ, Jtr);
         if (iterated.indices.size() < indices.size())
             JtJ *=
                 static_cast<double>(indices.size()) / static_cast<double>(iterated.indices.size());
@@ -342,9 +363,10 @@ void setFinalUncertainty(const TwoViewData& data, const std::vector<int>& indice
     TangentUncertainty<Problem::kDof>* uncertainty = setUncertainty(data, indices, problem, model);
     const int dof = static_cast<int>(indices.size()) - Problem::kDof;
     model.noiseSigma =
-        dof > 0 ? noiseFromTruncatedResiduals(sampsonCost(data, indices, problem.current()) / dof,
-                                              data.threshold)
-                : std::numeric_limits<double>::quiet_NaN();
+        dof > 0
+            ? noiseFromTruncatedResiduals(
+                  sampsonCost(gatherPoints(data, indices), problem.current()) / dof, data.threshold)
+            : std::numeric_limits<double>::quiet_NaN();
     if (!uncertainty)
         return;
     const double sigma =
@@ -374,7 +396,7 @@ bool dropUnconfirmedInliers(const TwoViewData& data, const Problem& problem,
     constexpr int P = Problem::kDof;
     Eigen::Matrix<double, P, P> JtJ;
     Eigen::Matrix<double, P, 1> Jtr;
-    normalEquations(data, indices, problem, JtJ, Jtr);
+    normalEquations(gatherPoints(data, indices), problem, JtJ, Jtr);
     const Eigen::LDLT<Eigen::Matrix<double, P, P>> information(JtJ);
     if (information.info() != Eigen::Success)
         return false;
@@ -463,12 +485,13 @@ bool fitModel(const TwoViewData& data, ModelForm form, const std::vector<int>& i
 double cauchyInefficiency(const TwoViewData& data, const std::vector<int>& indices,
                           const Eigen::Matrix3d& F, const CauchyLoss& loss)
 {
-    CoordinateBlock block;
+    const GatheredPoints& points = gatherPoints(data, indices);
     double squared[kSampsonBlock];
     CauchyVarianceFactor factor(loss.scale2);
-    for (size_t start = 0; start < indices.size(); start += kSampsonBlock) {
-        const int count = block.gather(data, indices, start);
-        sampsonDistancesSquaredOfBlock(F, block.x1, block.y1, block.x2, block.y2, count, squared);
+    for (size_t start = 0; start < points.size(); start += kSampsonBlock) {
+        const int count = points.blockSize(start);
+        sampsonDistancesSquaredOfBlock(F, &points.x1[start], &points.y1[start], &points.x2[start],
+                                       &points.y2[start], count, squared);
         for (int j = 0; j < count; ++j)
             factor.add(squared[j]);
     }
