@@ -68,15 +68,20 @@ bool homographyOfMany(const std::vector<Point2d>& from, const std::vector<Point2
 {
     if (indices.size() < 4)
         return false;
+    // The lower triangle of sum a a^T + b b^T, written out: Eigen's rank-one update of a fixed
+    // 9 x 9 matrix goes through its general product kernel, several times slower here.
     Eigen::Matrix<double, 9, 9> AtA = Eigen::Matrix<double, 9, 9>::Zero();
     for (int i : indices) {
         const Point2d& p = from[static_cast<size_t>(i)];
         const Point2d& q = to[static_cast<size_t>(i)];
-        Eigen::Matrix<double, 9, 1> a, b;
-        a << p.x, p.y, 1, 0, 0, 0, -q.x * p.x, -q.x * p.y, -q.x;
-        b << 0, 0, 0, p.x, p.y, 1, -q.y * p.x, -q.y * p.y, -q.y;
-        AtA.selfadjointView<Eigen::Lower>().rankUpdate(a);
-        AtA.selfadjointView<Eigen::Lower>().rankUpdate(b);
+        const double a[9] = {p.x, p.y, 1, 0, 0, 0, -q.x * p.x, -q.x * p.y, -q.x};
+        const double b[9] = {0, 0, 0, p.x, p.y, 1, -q.y * p.x, -q.y * p.y, -q.y};
+        for (int c = 0; c < 9; ++c)
+            for (int r = c; r < 9; ++r)
+                AtA(r, c) += a[r] * a[c];
+        for (int c = 0; c < 9; ++c)
+            for (int r = c; r < 9; ++r)
+                AtA(r, c) += b[r] * b[c];
     }
     const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 9, 9>> eigen(
         AtA.selfadjointView<Eigen::Lower>());
