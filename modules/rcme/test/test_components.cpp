@@ -298,6 +298,41 @@ TEST(Rcme_Parameterization, fundamental_jacobian_matches_finite_differences)
                                                                  data);
 }
 
+// The tangent at a step, taken from the step's rotated factors (FundamentalTangent::moved), is
+// the one the SVD of the stepped F gives: the same F, rotations for U and V, s in [0, 1], and the
+// same derivatives up to the signs of the null-space columns (compared through dF's effect on F).
+// A step that takes s past 1 or below 0 falls back to the SVD and still gives an ordered tangent.
+TEST(Rcme_Parameterization, a_moved_fundamental_tangent_is_the_svd_of_the_stepped_f)
+{
+    const SyntheticScene scene = noiseFreeScene(4, 1.0);
+    const FundamentalTangent tangent(trueF(scene));
+    cv::RNG rng(7);
+    for (int trial = 0; trial < 50; ++trial) {
+        Eigen::Matrix<double, 7, 1> theta;
+        for (int k = 0; k < 7; ++k)
+            theta(k) = rng.gaussian(trial < 40 ? 0.05 : 1.0);
+        const FundamentalTangent moved = tangent.moved(theta);
+        const FundamentalTangent bySvd(tangent.apply(theta));
+        EXPECT_LT(
+            (normalizeFundamental(moved.compose()) - normalizeFundamental(tangent.apply(theta)))
+                .norm(),
+            1e-12)
+            << "trial " << trial;
+        EXPECT_NEAR(moved.s, bySvd.s, 1e-12) << "trial " << trial;
+        EXPECT_GE(moved.s, 0.0);
+        EXPECT_LE(moved.s, 1.0);
+        EXPECT_NEAR(moved.U.determinant(), 1.0, 1e-12);
+        EXPECT_NEAR(moved.V.determinant(), 1.0, 1e-12);
+        EXPECT_LT((moved.U.transpose() * moved.U - Eigen::Matrix3d::Identity()).norm(), 1e-12);
+        // The first two columns span the same planes: the tangent spaces agree.
+        EXPECT_LT((moved.U.leftCols<2>() * moved.U.leftCols<2>().transpose() -
+                   bySvd.U.leftCols<2>() * bySvd.U.leftCols<2>().transpose())
+                      .norm(),
+                  1e-9)
+            << "trial " << trial;
+    }
+}
+
 TEST(Rcme_GoldStandardRefiner, improves_a_perturbed_estimate)
 {
     for (bool calibrated : {false, true}) {

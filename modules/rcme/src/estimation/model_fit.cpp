@@ -65,12 +65,12 @@ struct FundamentalProblem
     static constexpr int kDof = FundamentalTangent::kDof;
     Eigen::Matrix3d T1, T2;
     Eigen::Matrix3d Fn;
-    FundamentalTangent tangent;
-    Eigen::Matrix3d pendingFn;
+    FundamentalTangent tangent, pending;
 
     FundamentalProblem(const Eigen::Matrix3d& T1_, const Eigen::Matrix3d& T2_,
                        const Eigen::Matrix3d& normalizedF)
-        : T1(T1_), T2(T2_), Fn(FundamentalTangent(normalizedF).compose()), tangent(Fn)
+        : T1(T1_), T2(T2_), Fn(FundamentalTangent(normalizedF).compose()), tangent(Fn),
+          pending(tangent)
     {
     }
     Eigen::Matrix3d toPixels(const Eigen::Matrix3d& normalized) const
@@ -86,13 +86,13 @@ struct FundamentalProblem
     }
     Eigen::Matrix3d propose(const Eigen::Matrix<double, kDof, 1>& delta)
     {
-        pendingFn = tangent.apply(delta);
-        return toPixels(pendingFn);
+        pending = tangent.moved(delta);
+        return toPixels(pending.compose());
     }
     void accept()
     {
-        Fn = FundamentalTangent(pendingFn).compose();
-        tangent = FundamentalTangent(Fn);
+        tangent = pending;
+        Fn = tangent.compose();
     }
 };
 

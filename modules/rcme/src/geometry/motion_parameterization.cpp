@@ -72,6 +72,20 @@ Eigen::Matrix3d FundamentalTangent::apply(const Eigen::Matrix<double, kDof, 1>& 
     return Ua * Eigen::Vector3d(1, s + theta(6), 0).asDiagonal() * Vb.transpose();
 }
 
+FundamentalTangent FundamentalTangent::moved(const Eigen::Matrix<double, kDof, 1>& theta) const
+{
+    const double movedS = s + theta(6);
+    if (!(movedS >= 0.0 && movedS <= 1.0))
+        return FundamentalTangent(apply(theta)); // the singular values change order or sign
+    // U exp(a) and V exp(b) stay proper rotations, and diag(1, s + theta_7, 0) is ordered: an SVD
+    // of apply(theta) as it stands, without computing one.
+    FundamentalTangent tangent = *this;
+    tangent.U = U * rotationExp(theta.segment<3>(0));
+    tangent.V = V * rotationExp(theta.segment<3>(3));
+    tangent.s = movedS;
+    return tangent;
+}
+
 void FundamentalTangent::derivatives(Eigen::Matrix3d dF[kDof]) const
 {
     const Eigen::Matrix3d D = Eigen::Vector3d(1, s, 0).asDiagonal();

@@ -52,6 +52,10 @@ struct FundamentalTangent
     explicit FundamentalTangent(const Eigen::Matrix3d& F);
     Eigen::Matrix3d compose() const;
     Eigen::Matrix3d apply(const Eigen::Matrix<double, kDof, 1>& theta) const;
+    /** The tangent at apply(theta), whose compose() is apply(theta) normalized: from the rotated
+    U, V and the moved s where that is already an SVD (0 <= s + theta_7 <= 1), else from the SVD
+    of apply(theta). */
+    FundamentalTangent moved(const Eigen::Matrix<double, kDof, 1>& theta) const;
     //! dF/dtheta_k at theta = 0.
     void derivatives(Eigen::Matrix3d dF[kDof]) const;
 };
