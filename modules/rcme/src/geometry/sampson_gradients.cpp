@@ -159,15 +159,15 @@ void sampsonGradientsOfBlock(const Eigen::Matrix3d& F, const Eigen::Matrix3d* di
     double f[9];
     rowMajor(F, f);
     distancesOfBlock(f, x1, y1, x2, y2, count, terms, distance, valid);
+    if (parameters != 5 && parameters != 7)
+        CV_Error(Error::StsNotImplemented, "Sampson gradients of 5 or 7 parameters only");
     double rows[7 * 9];
     for (int k = 0; k < parameters; ++k)
         rowMajor(directions[k], rows + 9 * k);
     if (parameters == 5)
         gradientsOfBlock<5>(rows, x1, y1, x2, y2, count, terms, gradients);
-    else if (parameters == 7)
-        gradientsOfBlock<7>(rows, x1, y1, x2, y2, count, terms, gradients);
     else
-        CV_Error(Error::StsNotImplemented, "Sampson gradients of 5 or 7 parameters only");
+        gradientsOfBlock<7>(rows, x1, y1, x2, y2, count, terms, gradients);
 }
 
 void sampsonDistancesSquaredOfBlock(const Eigen::Matrix3d& F, const double* x1, const double* y1,
