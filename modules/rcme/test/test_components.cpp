@@ -619,8 +619,7 @@ TEST(Rcme_Statistics, log_binomial_coefficient_and_tail)
     EXPECT_EQ(logBinomialTail(100, 0.1, 101), -std::numeric_limits<double>::infinity());
 }
 
-// A subset is the same problem (camera, noise, bounds) on fewer correspondences, in their order;
-// a gathered buffer holds nothing of its previous contents.
+// A subset is the same problem (camera, noise, bounds) on fewer correspondences, in their order.
 TEST(Rcme_TwoViewData, subsets_keep_the_problem_and_the_order)
 {
     TwoViewData data;
@@ -654,18 +653,6 @@ TEST(Rcme_TwoViewData, subsets_keep_the_problem_and_the_order)
         EXPECT_EQ(every7th.points2[k], data.points2[7 * k]);
     }
     EXPECT_EQ(evenlySpacedSubset(data, 50).points1, data.points1);
-
-    const std::vector<int> indices = {3, 4, 10, 11, 12, 30, 41, 49};
-    TwoViewData gathered; // another problem's settings and points, to be replaced
-    gathered.points1.assign(9, Eigen::Vector2d(-1, -1));
-    gathered.points2.assign(9, Eigen::Vector2d(-1, -1));
-    gatherCorrespondences(data, indices, 3, gathered);
-    expectSameProblem(gathered);
-    ASSERT_EQ(gathered.size(), 3);
-    for (size_t k = 0; k < 3; ++k) {
-        EXPECT_EQ(gathered.points1[k], data.points1[static_cast<size_t>(indices[3 * k])]);
-        EXPECT_EQ(gathered.points2[k], data.points2[static_cast<size_t>(indices[3 * k])]);
-    }
 }
 
 TEST(Rcme_Statistics, quantiles_match_their_closed_forms)

@@ -97,10 +97,11 @@ struct FundamentalProblem
 };
 
 // A fit's points as four coordinate arrays in the indices' order, for the block kernels: gathered
-// once per fit, and every pass of its iterations reads them in place (each pass used to gather
-// them again, a scattered read per point). Per thread and reused: local optimisation fits inside
-// the hypothesis loop, which must not allocate. Valid until the thread's next gathering; the
-// functions below that gather do not call one another while they hold it.
+// once per fit, and every pass of its iterations reads them in place (gathered by index on each
+// pass, or strided through a million points, they would be a scattered read per point). Per
+// thread and reused: local optimisation fits inside the hypothesis loop, which must not
+// allocate. Valid until the thread's next gathering; the functions below that gather do not call
+// one another while they hold it.
 struct GatheredPoints
 {
     std::vector<double> x1, y1, x2, y2;
@@ -113,7 +114,10 @@ struct GatheredPoints
     }
 };
 
-const GatheredPoints& gatherPoints(const TwoViewData& data, const std::vector<int>& indices)
+// indices[0], indices[stride], indices[2 stride], ...: every one by default, or the evenly spaced
+// subset a large fit iterates on (kMaxIteratedPoints, subsetStride).
+const GatheredPoints& gatherPoints(const TwoViewData& data, const std::vector<int>& indices,
+                                   size_t stride = 1)
 {
     thread_local GatheredPoints gathered;
     // Room for every point of the data at once: local optimisation's growing inlier sets then
@@ -122,13 +126,13 @@ const GatheredPoints& gatherPoints(const TwoViewData& data, const std::vector<in
         for (std::vector<double>* coordinates :
              {&gathered.x1, &gathered.y1, &gathered.x2, &gathered.y2})
             coordinates->reserve(data.points1.size());
-    const size_t n = indices.size();
+    const size_t n = (indices.size() + stride - 1) / stride;
     gathered.x1.resize(n);
     gathered.y1.resize(n);
     gathered.x2.resize(n);
     gathered.y2.resize(n);
     for (size_t k = 0; k < n; ++k) {
-        const auto i = static_cast<size_t>(indices[k]);
+        const auto i = static_cast<size_t>(indices[k * stride]);
         gathered.x1[k] = data.points1[i].x();
         gathered.y1[k] = data.points1[i].y();
         gathered.x2[k] = data.points2[i].x();
@@ -226,11 +230,10 @@ constexpr double kNegligibleCostDecrease = 1e-8;
 // Levenberg-Marquardt with multiplicative damping on the diagonal, on the loss's reweighted
 // system. Returns the final cost.
 template <class Problem, class Loss = SquaredLoss>
-double levenbergMarquardt(const TwoViewData& data, const std::vector<int>& inliers,
-                          Problem& problem, int maxIterations, const Loss& loss = Loss())
+double levenbergMarquardt(const GatheredPoints& points, Problem& problem, int maxIterations,
+                          const Loss& loss = Loss())
 {
     constexpr int P = Problem::kDof;
-    const GatheredPoints& points = gatherPoints(data, inliers);
     double cost = sampsonCost(points, problem.current(), loss);
     double damping = 1e-3;
     Eigen::Matrix<double, P, P> JtJ;
@@ -269,39 +272,16 @@ void finishOnEveryPoint(const TwoViewData& data, const std::vector<int>& inliers
                         int maxIterations)
 {
     if (inliers.size() > kMaxIteratedPoints)
-        levenbergMarquardt(data, inliers, problem, std::min(maxIterations, kFullSetIterations));
-}
-
-// The evenly spaced subset a large fit iterates on, inliers[0], inliers[stride], ..., copied next
-// to each other: strided through a million points they lie scattered in memory, and every pass
-// of the iterations would miss the cache twice a point. Same points, same order: the same sums.
-// Per thread and reused (local optimisation fits inside the hypothesis loop, which must not
-// allocate); valid until the thread's next call.
-struct IteratedPoints
-{
-    const TwoViewData& data;
-    const std::vector<int>& indices;
-};
-
-IteratedPoints iteratedPoints(const TwoViewData& data, const std::vector<int>& inliers)
-{
-    const size_t stride = subsetStride(inliers.size());
-    if (stride == 1)
-        return {data, inliers};
-    thread_local TwoViewData gathered;
-    thread_local std::vector<int> positions;
-    gatherCorrespondences(data, inliers, stride, gathered);
-    positions.resize(gathered.points1.size());
-    std::iota(positions.begin(), positions.end(), 0);
-    return {gathered, positions};
+        levenbergMarquardt(gatherPoints(data, inliers), problem,
+                           std::min(maxIterations, kFullSetIterations));
 }
 
 template <class Problem>
 void leastSquares(const TwoViewData& data, const std::vector<int>& inliers, Problem& problem,
                   int maxIterations, bool finish)
 {
-    const IteratedPoints iterated = iteratedPoints(data, inliers);
-    levenbergMarquardt(iterated.data, iterated.indices, problem, maxIterations);
+    levenbergMarquardt(gatherPoints(data, inliers, subsetStride(inliers.size())), problem,
+                       maxIterations);
     if (finish)
         finishOnEveryPoint(data, inliers, problem, maxIterations);
 }
@@ -330,11 +310,10 @@ setUncertainty(const TwoViewData& data, const std::vector<int>& indices, const P
     if (everyPoint) {
         normalEquations(gatherPoints(data, indices), problem, JtJ, Jtr);
     } else {
-        const IteratedPoints iterated = iteratedPoints(data, indices);
-        normalEquations(gatherPoints(iterated.data, iterated.indices), problem, JtJ, Jtr);
-        if (iterated.indices.size() < indices.size())
-            JtJ *=
-                static_cast<double>(indices.size()) / static_cast<double>(iterated.indices.size());
+        const GatheredPoints& subset = gatherPoints(data, indices, subsetStride(indices.size()));
+        normalEquations(subset, problem, JtJ, Jtr);
+        if (subset.size() < indices.size())
+            JtJ *= static_cast<double>(indices.size()) / static_cast<double>(subset.size());
     }
     const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, P, P>> eig(JtJ);
     model.uncertainty.reset();
@@ -554,7 +533,7 @@ bool polishFinalMotionOn(const TwoViewData& data, const std::vector<int>& indice
     const CauchyLoss loss{lossScale * lossScale};
     const Motion& motion = *model.motion();
     MotionProblem problem{data.Kinv, motion.R, motion.t, motion.R, motion.t};
-    levenbergMarquardt(data, indices, problem, maxIterations, loss);
+    levenbergMarquardt(gatherPoints(data, indices), problem, maxIterations, loss);
     const double inefficiency = cauchyInefficiency(data, indices, problem.current(), loss);
     if (!(inefficiency < 1.0))
         return false;

@@ -183,22 +183,6 @@ void copySettings(const TwoViewData& from, TwoViewData& to)
     to.useEstimatedNoise = from.useEstimatedNoise;
 }
 
-// `out` becomes `data`'s settings with the correspondences pointAt(0), pointAt(stride), ... of
-// the first `count` positions.
-template <class PointAt>
-void gatherEvery(const TwoViewData& data, size_t count, size_t stride, PointAt pointAt,
-                 TwoViewData& out)
-{
-    copySettings(data, out);
-    out.points1.clear();
-    out.points2.clear();
-    for (size_t k = 0; k < count; k += stride) {
-        const size_t i = pointAt(k);
-        out.points1.push_back(data.points1[i]);
-        out.points2.push_back(data.points2[i]);
-    }
-}
-
 } // namespace
 
 TwoViewData evenlySpacedSubset(const TwoViewData& data, size_t maxPoints)
@@ -207,17 +191,12 @@ TwoViewData evenlySpacedSubset(const TwoViewData& data, size_t maxPoints)
     if (stride == 1)
         return data;
     TwoViewData subset;
-    gatherEvery(
-        data, data.points1.size(), stride, [](size_t k) { return k; }, subset);
+    copySettings(data, subset);
+    for (size_t i = 0; i < data.points1.size(); i += stride) {
+        subset.points1.push_back(data.points1[i]);
+        subset.points2.push_back(data.points2[i]);
+    }
     return subset;
-}
-
-void gatherCorrespondences(const TwoViewData& data, const std::vector<int>& indices, size_t stride,
-                           TwoViewData& out)
-{
-    gatherEvery(
-        data, indices.size(), stride, [&](size_t k) { return static_cast<size_t>(indices[k]); },
-        out);
 }
 
 } // namespace detail

@@ -56,11 +56,6 @@ inline size_t subsetStride(size_t count, size_t maxPoints = kMaxIteratedPoints)
 //! camera and noise: the subset on which a decision about a large problem is made.
 TwoViewData evenlySpacedSubset(const TwoViewData& data, size_t maxPoints);
 
-/** `out` becomes `data`'s camera and noise with the correspondences indices[0], indices[stride],
-indices[2 stride], ... only, in that order; its buffers are reused. */
-void gatherCorrespondences(const TwoViewData& data, const std::vector<int>& indices, size_t stride,
-                           TwoViewData& out);
-
 /** The positions of the ones of `mask`, in order, into `indices` (sized for every point first, so
 that a reused buffer never allocates again). */
 void maskIndices(const std::vector<uchar>& mask, std::vector<int>& indices);
