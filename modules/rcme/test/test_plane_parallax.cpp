@@ -182,6 +182,44 @@ TEST(Rcme_PlaneParallax, the_quick_search_finds_the_plane_among_more_outliers)
     EXPECT_LT((H - Eigen::Matrix3d::Identity()).norm(), 1e-9);
 }
 
+// The quick search's count stops reading once a sample cannot beat the best: whatever the best,
+// a count above it is exact (the search keeps that sample with it) and one that is not stays at or
+// below it (the sample is dropped), wherever the held points lie in the list.
+TEST(Rcme_PlaneParallax, the_quick_search_count_is_exact_wherever_it_can_beat_the_best)
+{
+    cv::RNG rng(7);
+    for (int trial = 0; trial < 20; ++trial) {
+        Eigen::Matrix3d H;
+        H << 1 + rng.uniform(-0.1, 0.1), rng.uniform(-0.1, 0.1), rng.uniform(-20.0, 20.0),
+            rng.uniform(-0.1, 0.1), 1 + rng.uniform(-0.1, 0.1), rng.uniform(-20.0, 20.0),
+            rng.uniform(-1e-4, 1e-4), rng.uniform(-1e-4, 1e-4), 1;
+        const int n = 40 + trial;
+        std::vector<Point2d> from, to;
+        int held = 0;
+        for (int i = 0; i < n; ++i) {
+            const Point2d p(rng.uniform(0.0, 640.0), rng.uniform(0.0, 480.0));
+            const Eigen::Vector3d x = H * Eigen::Vector3d(p.x, p.y, 1);
+            Point2d q(x.x() / x.z(), x.y() / x.z());
+            // Held points where the trial puts them: first, last, or every third.
+            const bool onH = trial % 3 == 0 ? i < n / 2 : trial % 3 == 1 ? i >= n / 2 : i % 3 == 0;
+            if (!onH)
+                q += Point2d(rng.uniform(5.0, 50.0), rng.uniform(5.0, 50.0));
+            held += onH;
+            from.push_back(p);
+            to.push_back(q);
+        }
+        const double threshold2 = 4.0;
+        for (int toBeat = -1; toBeat <= n + 1; ++toBeat) {
+            const int counted =
+                cv::rcme::detail::transferredUnlessBeaten(from, to, H, threshold2, toBeat);
+            if (held > toBeat)
+                EXPECT_EQ(counted, held) << "trial " << trial << ", best " << toBeat;
+            else
+                EXPECT_LE(counted, toBeat) << "trial " << trial << ", best " << toBeat;
+        }
+    }
+}
+
 TEST(Rcme_PlaneParallax, the_homography_explains_the_inliers_of_these_scenes)
 {
     // The scenes above reach the plane and parallax decision: Torr's GRIC prefers the homography

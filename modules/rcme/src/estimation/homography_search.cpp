@@ -47,20 +47,6 @@ void transferInliers(const std::vector<Point2d>& from, const std::vector<Point2d
             inliers.push_back(static_cast<int>(i));
 }
 
-/* The points H transfers within `threshold2`, counted until they can no longer exceed `toBeat`:
-then some count no larger than it (a sample that does not beat the best is dropped either way). */
-int transferredUnlessBeaten(const std::vector<Point2d>& from, const std::vector<Point2d>& to,
-                            const Eigen::Matrix3d& H, double threshold2, int toBeat)
-{
-    const int count = static_cast<int>(from.size());
-    int held = 0;
-    for (int i = 0; i < count && held + (count - i) > toBeat; ++i) {
-        const size_t k = static_cast<size_t>(i);
-        held += isTransferredWithin(H, from[k], to[k], threshold2);
-    }
-    return held;
-}
-
 /* Least squares (the direct linear transform) on the correspondences `indices`: the unit vector h
 minimizing |A h| over their two equations each. False when they do not determine H. */
 bool homographyOfMany(const std::vector<Point2d>& from, const std::vector<Point2d>& to,
@@ -93,6 +79,18 @@ bool homographyOfMany(const std::vector<Point2d>& from, const std::vector<Point2
 }
 
 } // namespace
+
+int transferredUnlessBeaten(const std::vector<Point2d>& from, const std::vector<Point2d>& to,
+                            const Eigen::Matrix3d& H, double threshold2, int toBeat)
+{
+    const int count = static_cast<int>(from.size());
+    int held = 0;
+    for (int i = 0; i < count && held + (count - i) > toBeat; ++i) {
+        const size_t k = static_cast<size_t>(i);
+        held += isTransferredWithin(H, from[k], to[k], threshold2);
+    }
+    return held;
+}
 
 Normalization normalizeInPlace(std::vector<Point2d>& points)
 {

@@ -47,6 +47,13 @@ inline bool isTransferredWithin(const Eigen::Matrix3d& H, const Point2d& p, cons
     return dx * dx + dy * dy <= threshold2;
 }
 
+/** How many points of `from` H transfers within squared distance `threshold2` of `to`, counted
+until that count can no longer exceed `toBeat`: the count itself when it is above `toBeat`, some
+count no larger than `toBeat` otherwise (the search drops a sample that does not beat its best
+either way, and stops reading its points early). */
+int transferredUnlessBeaten(const std::vector<Point2d>& from, const std::vector<Point2d>& to,
+                            const Eigen::Matrix3d& H, double threshold2, int toBeat);
+
 /** The homography that holds the most of the correspondences within `transferThreshold` (the
 distance of x2 from H x1 in image 2, in pixels, as cv::findHomography measures it), H(2, 2) = 1:
 RANSAC over four-point samples that keep their orientation, at most 200 and until the classic
