@@ -144,8 +144,8 @@ public:
             // The hypothesis becomes a motion: its essential matrix (FundamentalForm::essential,
             // which the refinement as F leaves as it was) decomposed with cheirality on the inliers
             // of the refined F, then refined in motion space. The inliers F gathers decide the
-            // decomposition and where the motion's refinement starts (doc/performance.md, third
-            // pass).
+            // decomposition and where the motion's refinement starts (doc/performance.md,
+            // "Refining F before the motion").
             if (!recoverMotion(data, selected.inliers, selected.model))
                 return Verdict{STATUS_DEGENERATE_CONFIGURATION, kNoCheirality, selected.model};
             refinement.refineNewForm(data, selected);
