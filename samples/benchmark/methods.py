@@ -191,14 +191,14 @@ def _run_opencv_e(flag):
     return run
 
 
-def _poselib_ransac_options(budget):
+def poselib_ransac_options(budget, confidence=DEFAULT_CONFIDENCE):
     """PoseLib's RANSAC options for the budget: its Sampson threshold, N as min and max
-    iterations when exact, its own adaptive bound at DEFAULT_CONFIDENCE otherwise."""
+    iterations when exact; adaptive, its own bound at `confidence` and no minimum number of
+    samples, as every other method runs (PoseLib's own default minimum is 100)."""
     return {"max_iterations": budget.iterations, "max_epipolar_error": budget.threshold,
             "seed": budget.seed,
-            "min_iterations": min(100, budget.iterations) if budget.adaptive
-            else budget.iterations,
-            "success_prob": DEFAULT_CONFIDENCE if budget.adaptive else 1.0 - 1e-12}
+            "min_iterations": 0 if budget.adaptive else budget.iterations,
+            "success_prob": confidence if budget.adaptive else 1.0 - 1e-12}
 
 
 def _run_poselib():
@@ -211,7 +211,7 @@ def _run_poselib():
         camera = {"model": "PINHOLE", "width": int(round(2 * K[0, 2])),
                   "height": int(round(2 * K[1, 2])),
                   "params": [K[0, 0], K[1, 1], K[0, 2], K[1, 2]]}
-        options = _poselib_ransac_options(budget)
+        options = poselib_ransac_options(budget)
         start = time.perf_counter()
         pose, info = poselib.estimate_relative_pose(p1, p2, camera, camera, options, {})
         seconds = time.perf_counter() - start
@@ -229,7 +229,7 @@ def _run_poselib_f():
     """PoseLib's fundamental matrix (7-point RANSAC with LO and a final refinement), no K: the
     same pixel threshold on its Sampson error, N as for its relative pose."""
     def run(p1, p2, K, budget):
-        options = _poselib_ransac_options(budget)
+        options = poselib_ransac_options(budget)
         start = time.perf_counter()
         F, info = poselib.estimate_fundamental(p1, p2, options, {})
         seconds = time.perf_counter() - start

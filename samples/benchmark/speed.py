@@ -95,9 +95,7 @@ def poselib_runner():
         camera = {"model": "PINHOLE", "width": int(round(2 * K[0, 2])),
                   "height": int(round(2 * K[1, 2])),
                   "params": [K[0, 0], K[1, 1], K[0, 2], K[1, 2]]}
-        options = {"max_iterations": N, "max_epipolar_error": methods.Budget(N, 1.0, 0).threshold,
-                   "seed": 0, "min_iterations": 0 if adaptive else N,
-                   "success_prob": CONFIDENCE if adaptive else 1.0 - 1e-12}
+        options = methods.poselib_ransac_options(methods.Budget(N, 1.0, 0, adaptive), CONFIDENCE)
         start = time.perf_counter()
         poselib.estimate_relative_pose(p1, p2, camera, camera, options, {})
         return time.perf_counter() - start

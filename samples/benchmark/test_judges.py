@@ -4,7 +4,8 @@ test (metrics.epipole_blind), the confusion table's handling of unjudgeable runs
 pairs whose rows are another pair's (datasets.rows_of_another_pair), and the covariance
 calibration's loop tests (covariance_calibration.loop_nees, loop_translation_nees) and its
 medians' interval (median_interval), vo_front_end.py's and bundle_adjustment.py's refusal of bad
-arguments, and the bundle adjustment that measures fountain-P11's and templeSR's ground-truth
+arguments, PoseLib's options at the benchmark's settings (methods.poselib_ransac_options), and the
+bundle adjustment that measures fountain-P11's and templeSR's ground-truth
 error (bundle_adjustment).
 
     PYTHONPATH=build/python /usr/bin/python3 samples/benchmark/test_judges.py"""
@@ -18,6 +19,7 @@ import numpy as np
 import bundle_adjustment as bundle
 import covariance_calibration as calibration
 import datasets
+import methods
 import metrics
 import report
 import vo_front_end
@@ -234,6 +236,23 @@ class BundleAdjustmentArguments(unittest.TestCase):
                 bundle.main(argv + ["--data", "/nonexistent"])
             self.assertEqual(stop.exception.code, 2, argv)
             self.assertIn(name, err.getvalue())
+
+
+class PoseLibOptions(unittest.TestCase):
+    """PoseLib runs at every method's settings: adaptive with no minimum number of samples (its
+    own default is 100) at the given confidence, exactly N as both minimum and maximum."""
+
+    def test_adaptive_has_no_minimum_and_exact_is_n(self):
+        adaptive = methods.poselib_ransac_options(methods.Budget(1000, 1.0, 3, True), 0.999)
+        self.assertEqual(adaptive["min_iterations"], 0)
+        self.assertEqual(adaptive["max_iterations"], 1000)
+        self.assertEqual(adaptive["success_prob"], 0.999)
+        self.assertEqual(adaptive["seed"], 3)
+        self.assertAlmostEqual(adaptive["max_epipolar_error"], methods.Budget(1, 1.0, 0).threshold)
+        exact = methods.poselib_ransac_options(methods.Budget(500, 1.0, 0))
+        self.assertEqual(exact["min_iterations"], 500)
+        self.assertEqual(exact["max_iterations"], 500)
+        self.assertGreater(exact["success_prob"], 1.0 - 1e-9)
 
 
 class MedianInterval(unittest.TestCase):
