@@ -5,6 +5,14 @@ two-view estimates (fountain-P11's 11 images, templeSR's 16).
 
     PYTHONPATH=build/python /usr/bin/python3 samples/benchmark/bundle_adjustment.py \
         [--sequence fountain-P11|templeSR] [--bootstrap 30] [--out FILE]
+    PYTHONPATH=build/python build/poselib-venv/bin/python samples/benchmark/bundle_adjustment.py \
+        --judge "rcme default" "PoseLib relpose" [--sequence ...]
+
+--judge scores methods of the benchmark (methods.METHODS; PoseLib needs with_poselib.sh's venv)
+on the sequence's benchmark pairs twice: against the ground truth and against the relative
+motions of the adjustment with K fixed (AUC@10 and the mean of max(rotation, translation
+direction error)), exactly N = 1000 with seeds 0-2 for rcme's methods and once for the peers, and
+adaptive once; it prints a Markdown table (to --out when given) instead of the report.
 
 The default --out is doc/benchmark/fountain_bundle_adjustment.md or
 doc/benchmark/templeSR_bundle_adjustment.md. SIFT as the benchmark makes it (matching.Matcher, the
@@ -397,6 +405,73 @@ def adjusted(problem, gt, intrinsics, bootstrap, rng, log):
                                   for c in range(n)])
 
 
+def adjusted_relative_motions(problem, gt, camera_pairs):
+    """{(i, j): (R, t)} of the adjustment with K fixed started from the ground truth (the
+    report's gauge), x_j = R x_i + t."""
+    state = adjust(problem, gt, free_parameters(problem, gt[1], ()), iterations=100)
+    R, C = state[:2]
+    return {(i, j): (R[j] @ R[i].T, R[j] @ (C[i] - C[j])) for i, j in camera_pairs}
+
+
+def motion_error_deg(R, t, R_ref, t_ref):
+    """max(rotation, translation direction error) of (R, t) against the reference, deg, as the
+    benchmark judges it (rcme.compareMotion)."""
+    from methods import rcme
+    error = rcme.compareMotion(np.asarray(R, float), np.asarray(t, float).reshape(3, 1),
+                               np.asarray(R_ref, float), np.asarray(t_ref, float).reshape(3, 1))
+    return float(max(error.rotationDeg, error.translationDeg))
+
+
+def judge_against_adjustment(data, cache, method_names, name="fountain-P11", log=print):
+    """Rows (method, mode, runs, AUC@10 and mean error against the ground truth, the same against
+    the adjustment) and the ground truth's own distance from the adjustment (median, mean, deg)
+    over the sequence's benchmark pairs."""
+    import methods
+    import report
+    import run_benchmark
+    folder, load, _ = SEQUENCES[name]
+    sequence = load(os.path.join(data, folder), name)
+    matcher = matching.Matcher(cache)
+    problem, gt = tracks_under_ground_truth(sequence, matcher, sequence.max_side, log)
+    found, _ = run_benchmark.real_pairs(run_benchmark.parse_args(["--data", data, "--cache", cache]),
+                                        matcher)
+    chosen = [p for p in found if p.dataset == name]
+    keys = [tuple(int(f) for f in p.name.rsplit(" ", 1)[1].split("-")) for p in chosen]
+    adjusted = adjusted_relative_motions(problem, gt, keys)
+    gt_distance = [motion_error_deg(*adjusted[k], p.R_gt, p.t_gt) for k, p in zip(keys, chosen)]
+    rows = []
+    for method in method_names:
+        for adaptive in (False, True):
+            seeds = [0] if adaptive or method in methods.PEER_METHODS else [0, 1, 2]
+            errors = {"gt": [], "ba": []}
+            for key, pair in zip(keys, chosen):
+                for seed in seeds:
+                    e = methods.run(method, pair.points1, pair.points2, pair.K,
+                                    methods.Budget(1000, 1.0, seed, adaptive))
+                    ok = e is not None and e.ok and e.R is not None
+                    errors["gt"].append(motion_error_deg(e.R, e.t, pair.R_gt, pair.t_gt)
+                                        if ok else np.inf)
+                    errors["ba"].append(motion_error_deg(e.R, e.t, *adjusted[key])
+                                        if ok else np.inf)
+            score = {k: (report.auc([{"ok": np.isfinite(x), "rot": x, "trans": x} for x in v]),
+                         float(np.mean(v))) for k, v in errors.items()}
+            rows.append((method, "adaptive" if adaptive else "exactly N = 1000", len(errors["gt"]),
+                         score["gt"], score["ba"]))
+    return rows, (float(np.median(gt_distance)), float(np.mean(gt_distance)))
+
+
+def judge_table(name, rows, gt_distance):
+    lines = ["%s's benchmark pairs judged against the ground truth and against the relative "
+             "motions of a bundle adjustment of all its images (K fixed); the ground truth is "
+             "%.3f deg from the adjustment at the median, %.3f deg on average (max(rotation, "
+             "translation direction)).\n" % (name, gt_distance[0], gt_distance[1])]
+    lines.append(_table(["method", "runs", "n", "AUC@10 vs ground truth (mean error, deg)",
+                         "AUC@10 vs adjustment (mean error, deg)"],
+                        [[m, mode, str(n), "%.4f (%.4f)" % gt, "%.4f (%.4f)" % ba]
+                         for m, mode, n, gt, ba in rows]))
+    return lines
+
+
 # The sequences whose cameras it adjusts: name -> (folder under the data, loader, the default
 # report's file name under doc/benchmark).
 SEQUENCES = {
@@ -543,16 +618,35 @@ def main(argv=None):
     ap.add_argument("--max-side", type=int, default=None,
                     help="SIFT on images downscaled to this size for the tracks (default the "
                          "benchmark's: 1536 px for fountain-P11; 0: full size)")
+    ap.add_argument("--judge", nargs="+", metavar="METHOD", default=None,
+                    help="score these methods (methods.METHODS names) against the ground truth "
+                         "and the adjustment instead of writing the report")
     args = ap.parse_args(argv)
     # Refused before any data is read: a negative count or size was taken as none before.
     if args.bootstrap < 0:
         ap.error("--bootstrap must be >= 0 (replicates), not %d" % args.bootstrap)
     if args.max_side is not None and args.max_side < 0:
         ap.error("--max-side must be >= 0 (pixels; 0: full size), not %d" % args.max_side)
+    if args.judge:
+        import methods
+        unknown = [m for m in args.judge if m not in methods.METHODS]
+        if unknown:
+            ap.error("--judge: no method %s (known: %s)" % (", ".join(unknown),
+                                                            ", ".join(methods.METHODS)))
     folder, _, report_name = SEQUENCES[args.sequence]
     out = args.out or os.path.join(REPO_ROOT, "doc", "benchmark", report_name)
     if not os.path.isdir(os.path.join(args.data, folder)):
         print("skipped: no %s under %s" % (args.sequence, args.data))
+        return 0
+    if args.judge:
+        rows, gt_distance = judge_against_adjustment(
+            args.data, args.cache, args.judge, args.sequence,
+            log=lambda s: sys.stderr.write(s + "\n"))
+        lines = judge_table(args.sequence, rows, gt_distance)
+        if args.out:
+            with open(args.out, "w") as f:
+                f.write("\n".join(lines))
+        print("\n".join(lines))
         return 0
     result = measure(args.data, args.cache, args.bootstrap, max_side=args.max_side,
                      log=lambda s: sys.stderr.write(s + "\n"), name=args.sequence)
