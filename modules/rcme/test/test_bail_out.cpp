@@ -195,6 +195,61 @@ std::pair<double, double> compareReading(const std::vector<Configuration>& metho
     return {pointsRead[0] / runs, pointsRead[1] / runs};
 }
 
+// The band's count is the same on every machine: whichever clone the loader picks (AVX-512, AVX2
+// or the baseline, geometry/vector_clones.hpp), each point's (x2^T F x1)^2 <= t^2 |J|^2 is the
+// arithmetic written below, operation for operation, with no fused multiply-add. Each point in
+// turn is put exactly on the band's edge (t^2 its own ratio), where a rounding of one unit in
+// the last place decides it; a clone that rounds otherwise flips about half of them.
+TEST(Rcme_BailOut, the_band_count_rounds_as_the_scalar_arithmetic_at_the_edge)
+{
+    cv::RNG rng(21);
+    Eigen::Matrix<double, 3, 3, Eigen::RowMajor> F;
+    for (int k = 0; k < 9; ++k)
+        F.data()[k] = rng.uniform(-1.0, 1.0) * (k == 8                 ? 100.0
+                                                : k % 3 == 2 || k >= 6 ? 1e-2
+                                                                       : 1e-5);
+    const int n = 200; // several vector blocks and a remainder
+    std::vector<Eigen::Vector2d> points1(n), points2(n);
+    std::vector<double> ratio(n);
+    for (int i = 0; i < n; ++i) {
+        points1[i] = Eigen::Vector2d(rng.uniform(0.0, 1000.0), rng.uniform(0.0, 800.0));
+        points2[i] = Eigen::Vector2d(rng.uniform(0.0, 1000.0), rng.uniform(0.0, 800.0));
+        const double x1 = points1[i].x(), y1 = points1[i].y(), x2 = points2[i].x(),
+                     y2 = points2[i].y();
+        const double* f = F.data();
+        const double l0 = f[0] * x1 + f[1] * y1 + f[2];
+        const double l1 = f[3] * x1 + f[4] * y1 + f[5];
+        const double l2 = f[6] * x1 + f[7] * y1 + f[8];
+        const double m0 = f[0] * x2 + f[3] * y2 + f[6];
+        const double m1 = f[1] * x2 + f[4] * y2 + f[7];
+        const double r = x2 * l0 + y2 * l1 + l2;
+        ratio[i] = (r * r) / (l0 * l0 + l1 * l1 + m0 * m0 + m1 * m1);
+    }
+    const Eigen::Matrix3d Fc = F;
+    int onEdge = 0;
+    for (int k = 0; k < n; ++k) {
+        const double thresholdSquared = ratio[k];
+        int expected = 0;
+        for (int i = 0; i < n; ++i) {
+            const double x1 = points1[i].x(), y1 = points1[i].y(), x2 = points2[i].x(),
+                         y2 = points2[i].y();
+            const double* f = F.data();
+            const double l0 = f[0] * x1 + f[1] * y1 + f[2];
+            const double l1 = f[3] * x1 + f[4] * y1 + f[5];
+            const double l2 = f[6] * x1 + f[7] * y1 + f[8];
+            const double m0 = f[0] * x2 + f[3] * y2 + f[6];
+            const double m1 = f[1] * x2 + f[4] * y2 + f[7];
+            const double r = x2 * l0 + y2 * l1 + l2;
+            const double rr = r * r, jj = l0 * l0 + l1 * l1 + m0 * m0 + m1 * m1;
+            expected += (rr <= thresholdSquared * jj) & (jj > 0);
+            if (i == k)
+                onEdge += rr == thresholdSquared * jj;
+        }
+        ASSERT_EQ(countInSampsonBand(Fc, points1, points2, thresholdSquared), expected) << k;
+    }
+    EXPECT_GT(onEdge, 0); // some points sit on the edge to the last bit
+}
+
 TEST(Rcme_BailOut, a_run_is_the_same_as_with_every_point_read)
 {
     // Standard (inlier count) with the 7-point solver, and the default (5-point, local

@@ -39,9 +39,10 @@ RCME_ALWAYS_INLINE void sampsonParts(const FundamentalEntries& F, const double* 
 }
 
 // The points [begin, end) of a set; inlined into each clone of the loops below, so that it is
-// compiled for AVX2 in theirs (geometry/vector_clones.hpp). The loop vectorizes four points wide
-// on AVX2: 1.2 ns per point on the project's machine against 3.3 ns for the SSE2 baseline and 4.0
-// ns for the distance-per-point form it replaces.
+// compiled for AVX2 and AVX-512 in theirs (geometry/vector_clones.hpp). The loop vectorizes four
+// points wide on AVX2: 1.2 ns per point on the project's first machine against 3.3 ns for the SSE2
+// baseline and 4.0 ns for the distance-per-point form it replaces; eight wide on AVX-512
+// (doc/performance.md, "Large inputs").
 template <bool WriteMask>
 RCME_ALWAYS_INLINE long long bandBlock(const double* f, const double* a, const double* b,
                                        size_t begin, size_t end, double thresholdSquared,
@@ -62,8 +63,8 @@ RCME_ALWAYS_INLINE long long bandBlock(const double* f, const double* a, const d
 }
 
 template <bool WriteMask>
-RCME_VECTOR_CLONES int bandLoop(const double* f, const double* a, const double* b, size_t n,
-                                double thresholdSquared, uchar* mask)
+RCME_WIDE_VECTOR_CLONES int bandLoop(const double* f, const double* a, const double* b, size_t n,
+                                     double thresholdSquared, uchar* mask)
 {
     return static_cast<int>(bandBlock<WriteMask>(f, a, b, 0, n, thresholdSquared, mask));
 }
@@ -72,9 +73,9 @@ RCME_VECTOR_CLONES int bandLoop(const double* f, const double* a, const double* 
 // below the needed count stops within a few per cent of a real pair's points.
 constexpr size_t kBailOutBlock = 32;
 
-RCME_VECTOR_CLONES int bandLoopReaching(const double* f, const double* a, const double* b, size_t n,
-                                        double thresholdSquared, long long needed,
-                                        size_t& pointsRead)
+RCME_WIDE_VECTOR_CLONES int bandLoopReaching(const double* f, const double* a, const double* b,
+                                             size_t n, double thresholdSquared, long long needed,
+                                             size_t& pointsRead)
 {
     long long count = 0;
     size_t begin = 0;
