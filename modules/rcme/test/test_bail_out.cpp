@@ -210,10 +210,12 @@ TEST(Rcme_BailOut, the_band_count_rounds_as_the_scalar_arithmetic_at_the_edge)
                                                                        : 1e-5);
     const int n = 200; // several vector blocks and a remainder
     std::vector<Eigen::Vector2d> points1(n), points2(n);
-    std::vector<double> ratio(n);
     for (int i = 0; i < n; ++i) {
         points1[i] = Eigen::Vector2d(rng.uniform(0.0, 1000.0), rng.uniform(0.0, 800.0));
         points2[i] = Eigen::Vector2d(rng.uniform(0.0, 1000.0), rng.uniform(0.0, 800.0));
+    }
+    // (x2^T F x1)^2 and the squared norm of its gradient, as residual_bands.cpp writes them.
+    const auto sampsonParts = [&](int i, double& rr, double& jj) {
         const double x1 = points1[i].x(), y1 = points1[i].y(), x2 = points2[i].x(),
                      y2 = points2[i].y();
         const double* f = F.data();
@@ -223,24 +225,19 @@ TEST(Rcme_BailOut, the_band_count_rounds_as_the_scalar_arithmetic_at_the_edge)
         const double m0 = f[0] * x2 + f[3] * y2 + f[6];
         const double m1 = f[1] * x2 + f[4] * y2 + f[7];
         const double r = x2 * l0 + y2 * l1 + l2;
-        ratio[i] = (r * r) / (l0 * l0 + l1 * l1 + m0 * m0 + m1 * m1);
-    }
+        rr = r * r;
+        jj = l0 * l0 + l1 * l1 + m0 * m0 + m1 * m1;
+    };
     const Eigen::Matrix3d Fc = F;
     int onEdge = 0;
     for (int k = 0; k < n; ++k) {
-        const double thresholdSquared = ratio[k];
+        double rrK = 0, jjK = 0;
+        sampsonParts(k, rrK, jjK);
+        const double thresholdSquared = rrK / jjK;
         int expected = 0;
         for (int i = 0; i < n; ++i) {
-            const double x1 = points1[i].x(), y1 = points1[i].y(), x2 = points2[i].x(),
-                         y2 = points2[i].y();
-            const double* f = F.data();
-            const double l0 = f[0] * x1 + f[1] * y1 + f[2];
-            const double l1 = f[3] * x1 + f[4] * y1 + f[5];
-            const double l2 = f[6] * x1 + f[7] * y1 + f[8];
-            const double m0 = f[0] * x2 + f[3] * y2 + f[6];
-            const double m1 = f[1] * x2 + f[4] * y2 + f[7];
-            const double r = x2 * l0 + y2 * l1 + l2;
-            const double rr = r * r, jj = l0 * l0 + l1 * l1 + m0 * m0 + m1 * m1;
+            double rr = 0, jj = 0;
+            sampsonParts(i, rr, jj);
             expected += (rr <= thresholdSquared * jj) & (jj > 0);
             if (i == k)
                 onEdge += rr == thresholdSquared * jj;
