@@ -191,6 +191,14 @@ def _run_opencv_e(flag):
     return run
 
 
+def poselib_camera(K):
+    """PoseLib's pinhole camera of the camera matrix K (its image taken as twice the principal
+    point)."""
+    return {"model": "PINHOLE", "width": int(round(2 * K[0, 2])),
+            "height": int(round(2 * K[1, 2])),
+            "params": [K[0, 0], K[1, 1], K[0, 2], K[1, 2]]}
+
+
 def poselib_ransac_options(budget, confidence=DEFAULT_CONFIDENCE):
     """PoseLib's RANSAC options for the budget: its Sampson threshold, N as min and max
     iterations when exact; adaptive, its own bound at `confidence` and no minimum number of
@@ -208,9 +216,7 @@ def _run_poselib():
     def run(p1, p2, K, budget):
         if K is None:
             return None  # needs a camera matrix
-        camera = {"model": "PINHOLE", "width": int(round(2 * K[0, 2])),
-                  "height": int(round(2 * K[1, 2])),
-                  "params": [K[0, 0], K[1, 1], K[0, 2], K[1, 2]]}
+        camera = poselib_camera(K)
         options = poselib_ransac_options(budget)
         start = time.perf_counter()
         pose, info = poselib.estimate_relative_pose(p1, p2, camera, camera, options, {})

@@ -92,9 +92,7 @@ def opencv_e(flag):
 
 def poselib_runner():
     def run(p1, p2, K, N, adaptive):
-        camera = {"model": "PINHOLE", "width": int(round(2 * K[0, 2])),
-                  "height": int(round(2 * K[1, 2])),
-                  "params": [K[0, 0], K[1, 1], K[0, 2], K[1, 2]]}
+        camera = methods.poselib_camera(K)
         options = methods.poselib_ransac_options(methods.Budget(N, 1.0, 0, adaptive), CONFIDENCE)
         start = time.perf_counter()
         poselib.estimate_relative_pose(p1, p2, camera, camera, options, {})

@@ -255,6 +255,13 @@ class PoseLibOptions(unittest.TestCase):
         self.assertEqual(exact["max_iterations"], 500)
         self.assertGreater(exact["success_prob"], 1.0 - 1e-9)
 
+    def test_camera_of_a_camera_matrix(self):
+        K = np.array([[718.9, 0, 607.2], [0, 718.8, 185.2], [0, 0, 1]])
+        camera = methods.poselib_camera(K)
+        self.assertEqual(camera["model"], "PINHOLE")
+        self.assertEqual((camera["width"], camera["height"]), (1214, 370))
+        self.assertEqual(camera["params"], [718.9, 718.8, 607.2, 185.2])
+
 
 class MedianInterval(unittest.TestCase):
     def test_order_statistics_of_a_small_sample(self):

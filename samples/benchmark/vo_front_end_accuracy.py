@@ -21,12 +21,6 @@ import methods  # noqa: E402
 import vo_front_end  # noqa: E402
 
 
-def camera_of(K):
-    return {"model": "PINHOLE", "width": int(round(2 * K[0, 2])),
-            "height": int(round(2 * K[1, 2])),
-            "params": [K[0, 0], K[1, 1], K[0, 2], K[1, 2]]}
-
-
 def errors(R, t, pair):
     e = rcme.compareMotion(np.asarray(R), np.asarray(t).reshape(3, 1), pair.R_gt,
                            pair.t_gt.reshape(3, 1))
@@ -68,7 +62,7 @@ def main(argv=None):
                 continue
             p1 = np.ascontiguousarray(pair.points1, np.float64)
             p2 = np.ascontiguousarray(pair.points2, np.float64)
-            camera = camera_of(pair.K)
+            camera = methods.poselib_camera(pair.K)
             ours = methods.run(methods.DEFAULT_METHOD, p1, p2, pair.K, budget)
             peer = methods.run("PoseLib relpose", p1, p2, pair.K, budget)
             if not ours.ok or not peer.ok:

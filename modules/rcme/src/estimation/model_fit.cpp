@@ -15,8 +15,6 @@
 #include "geometry/sampson_gradients.hpp"
 #include "geometry/statistics.hpp"
 
-#include <numeric>
-
 namespace cv {
 namespace rcme {
 namespace detail {
