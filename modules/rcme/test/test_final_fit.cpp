@@ -2,14 +2,17 @@
 // found in the top-level directory of this distribution.
 
 // The estimate's final fit (Refiner::finalize, components/gold_standard_refiner.cpp): the motion
-// it returns is the least-squares fit of the points its mask marks. Internal (cv::rcme::detail),
-// so standalone only, as test_components.cpp.
+// it returns is the least-squares fit of the points its mask marks; without K it is kept only as
+// a refinement is kept (components/final_fit.cpp). Internal (cv::rcme::detail), so standalone
+// only, as test_components.cpp.
 
 #include "test_precomp.hpp"
 
 #ifdef RCME_STANDALONE_TESTS
 
 #include "estimation/model_fit.hpp"
+#include "framework/estimator_factory.hpp"
+#include "framework/refinement.hpp"
 #include "geometry/epipolar.hpp"
 #include "test_internal_helpers.hpp"
 
@@ -62,6 +65,54 @@ TEST(Rcme_FinalFit, returns_the_least_squares_fit_of_its_own_mask)
     const double decrease =
         squaredResiduals(data, returnedF, indices) - squaredResiduals(data, refit.F, indices);
     EXPECT_LT(decrease, 0.25 * kSigma * kSigma);
+}
+
+/* Without K the final fit is kept only as a refinement is kept: 40 points, half of them true,
+where the fit's rounds drop inliers of high leverage and often leave F at a higher truncated cost
+than the F they started from. From the true F refined as the selected model is: the F returned is
+the plain final fit wherever the scorer keeps that, and otherwise the F it started from, with the
+inliers of its own band, never an F the scorer rates worse. */
+TEST(Rcme_FinalFit, without_k_a_final_fit_the_scorer_rates_worse_is_not_kept)
+{
+    int undone = 0, kept = 0;
+    for (int seed = 0; seed < 20; ++seed) {
+        const SyntheticScene scene = testScene(SCENE_GENERIC, seed, 0.5, 1.0, 40);
+        const Params params;
+        const TwoViewData data = makeTwoViewData(scene.points1, scene.points2, noArray(), params);
+        const EstimatorComponents components = createEstimator(params, data);
+        Scorer& scorer = *components.scorer;
+        const Refinement refinement(scorer, components.refiner.get());
+        Fit entry;
+        cv2eigen(scene.F, entry.model.F);
+        scorer.classify(data, entry.model, entry.inliers);
+        entry.score = scorer.score(data, entry.model);
+        refinement.refineSelected(data, entry);
+
+        Model plain = entry.model;
+        std::vector<uchar> plainInliers = entry.inliers;
+        refinement.finalFit(data, plain, plainInliers);
+        Model chosen = entry.model;
+        std::vector<uchar> chosenInliers = entry.inliers;
+        refinement.finalFitUnlessWorse(data, chosen, chosenInliers);
+
+        const Score entryScore = scorer.score(data, entry.model);
+        if (scorer.keepsRefinement(entryScore, scorer.score(data, plain))) {
+            ++kept;
+            EXPECT_TRUE(chosen.F == plain.F) << "seed " << seed;
+            EXPECT_EQ(chosenInliers, plainInliers) << "seed " << seed;
+            continue;
+        }
+        ++undone;
+        EXPECT_LT((chosen.F - entry.model.F).norm(), 1e-12) << "seed " << seed;
+        EXPECT_LE(scorer.score(data, chosen).value, entryScore.value + 1e-9) << "seed " << seed;
+        for (size_t i = 0; i < chosenInliers.size(); ++i)
+            if (chosenInliers[i])
+                EXPECT_LE(sampsonDistanceSquared(chosen.F, data.points1[i], data.points2[i]),
+                          data.threshold * data.threshold)
+                    << "seed " << seed << ", point " << i;
+    }
+    EXPECT_GE(undone, 5);
+    EXPECT_GE(kept, 1);
 }
 
 } // namespace

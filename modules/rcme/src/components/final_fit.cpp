@@ -4,6 +4,13 @@
 // The estimate's final fit and covariance (framework/refinement.cpp, Refiner::finalize), once
 // what the inliers determine is decided (the homography comparison): the model it fits is the
 // one that is returned.
+//
+// Without K no stage after this one weighs F against another model, so the fit is kept only as a
+// refinement is kept, when the scorer does not rate it worse than the F it started from. Its
+// rounds take the band again and drop the inliers the others do not confirm (high leverage):
+// where two true matches alone fix a direction of F, both go, and F moves off them to fewer
+// points at a higher cost (doc/f_only.md, "The final fit kept as a refinement"). With K the rival
+// decisions after it refit and weigh the motions.
 
 #include "framework/component_factories.hpp"
 #include "framework/refinement.hpp"
@@ -22,7 +29,10 @@ public:
         StageOutcome outcome;
         Model& model = outcome.model.emplace(estimate.model);
         std::vector<uchar>& inliers = outcome.inliers.emplace(estimate.mask);
-        context.refinement.finalFit(context.data, model, inliers);
+        if (context.data.calibrated)
+            context.refinement.finalFit(context.data, model, inliers);
+        else
+            context.refinement.finalFitUnlessWorse(context.data, model, inliers);
         return outcome;
     }
 };

@@ -40,9 +40,11 @@ public:
     // (doc/performance.md, "Large inputs"). So a large set settles its band on the evenly spaced
     // subset of the fits' iterations first (kMaxIteratedPoints), where a round is cheap, and then
     // takes three rounds on every point (each halves what is left of the subset's noise).
-    void finalize(const TwoViewData& data, std::vector<uchar>& mask, Model& model) override
+    void finalize(const TwoViewData& data, std::vector<uchar>& mask, Model& model,
+                  FinalModel kind) override
     {
         constexpr int kMaxRounds = 4, kMaxSubsetRounds = 12, kRoundsAfterSubset = 3;
+        iterations_ = kind == FinalModel::kFitted ? maxIterations_ : 0;
         selection_ = mask;
         int rounds = kMaxRounds;
         const size_t stride = subsetStride(data.points1.size());
@@ -118,7 +120,7 @@ private:
         maskIndices(*chosen, inliers_);
         Model fitted = model;
         const ModelForm form = space_->formOf(model);
-        if (!fitFinalModelOn(data, form, inliers_, maxIterations_, fitted, confirmed_))
+        if (!fitFinalModelOn(data, form, inliers_, iterations_, fitted, confirmed_))
             return false;
         // Where the points do not determine the motion (a pure rotation leaves t free, when the
         // degeneracy test is off), the refit may turn t into the decomposition that puts the
@@ -148,6 +150,7 @@ private:
     std::vector<uchar> selection_, band_, inFront_;
     std::vector<int> confirmed_, finalInliers_;
     int maxIterations_;
+    int iterations_ = 0; // the final fit's: maxIterations_, or 0 for a held model
     std::vector<int> inliers_;
 };
 

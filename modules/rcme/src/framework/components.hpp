@@ -174,6 +174,13 @@ public:
     virtual void update(const Score& best, int pointCount) = 0;
 };
 
+//! Whether the final fit moves the model (Refiner::finalize).
+enum class FinalModel
+{
+    kFitted, //!< least squares on the inliers moves it
+    kHeld    //!< it stays as it is; only its inliers and uncertainty are computed there
+};
+
 //! Refines the selected hypothesis on its inliers.
 class Refiner
 {
@@ -185,8 +192,9 @@ public:
     /** The estimate's final fit and uncertainty, once: on the inliers in front of both cameras
     (calibrated) that the others confirm, with the noise estimated from their residuals and the
     covariance of the band-truncated fit (see Report::covariance). On return `inliers` marks
-    the points the fit used. */
-    virtual void finalize(const TwoViewData& data, std::vector<uchar>& inliers, Model& model) = 0;
+    the points the fit used. With FinalModel::kHeld the model is not moved (no iterations). */
+    virtual void finalize(const TwoViewData& data, std::vector<uchar>& inliers, Model& model,
+                          FinalModel kind) = 0;
 };
 
 struct SearchResult;

@@ -41,9 +41,31 @@ void Refinement::refineNewForm(const TwoViewData& data, Fit& fit) const
 
 void Refinement::finalFit(const TwoViewData& data, Model& model, std::vector<uchar>& inliers) const
 {
+    finalFit(data, model, inliers, FinalModel::kFitted);
+}
+
+void Refinement::finalFitUnlessWorse(const TwoViewData& data, Model& model,
+                                     std::vector<uchar>& inliers) const
+{
     if (!refiner_)
         return;
-    refiner_->finalize(data, inliers, model);
+    Model fitted = model;
+    std::vector<uchar> fittedInliers = inliers;
+    finalFit(data, fitted, fittedInliers, FinalModel::kFitted);
+    if (scorer_.keepsRefinement(scorer_.score(data, model), scorer_.score(data, fitted))) {
+        model = std::move(fitted);
+        inliers = std::move(fittedInliers);
+        return;
+    }
+    finalFit(data, model, inliers, FinalModel::kHeld);
+}
+
+void Refinement::finalFit(const TwoViewData& data, Model& model, std::vector<uchar>& inliers,
+                          FinalModel kind) const
+{
+    if (!refiner_)
+        return;
+    refiner_->finalize(data, inliers, model, kind);
     // The final fit moves the model a little: the inliers are the points it used that the
     // final model still holds.
     std::vector<uchar> held;

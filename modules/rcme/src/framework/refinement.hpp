@@ -34,7 +34,16 @@ public:
     of that fit that the fitted model still holds. */
     void finalFit(const TwoViewData& data, Model& model, std::vector<uchar>& inliers) const;
 
+    /** The final fit, kept as a refinement is kept: only when the scorer does not rate it below
+    the model as it came (Scorer::keepsRefinement). Otherwise the model stays where it was, with
+    the inliers and covariance of a final fit held there (FinalModel::kHeld). */
+    void finalFitUnlessWorse(const TwoViewData& data, Model& model,
+                             std::vector<uchar>& inliers) const;
+
 private:
+    void finalFit(const TwoViewData& data, Model& model, std::vector<uchar>& inliers,
+                  FinalModel kind) const;
+
     Scorer& scorer_;
     Refiner* refiner_;
 };
