@@ -20,6 +20,8 @@ Report.rejectedF. Pairs whose true matches cannot tell one epipole from another
 
     samples/benchmark/with_poselib.sh --f-only [--quick] [--out FILE]
     PYTHONPATH=build/python python3 samples/benchmark/f_only.py   (without PoseLib)
+    f_only.py --parts given --max-wrong-with-success 0   (the given rows; exit 1 on a wrong F
+                                                           returned with success)
 
 Writes a markdown report (default build/f_only.md) and prints the targets' figures."""
 import json
@@ -50,6 +52,9 @@ EXIT_SKIPPED = 77
 BORROWED = "given rows of another pair"
 QUICK_PAIRS = {"magsac/Brussels", "magsac/corr", "magsac/booksh", "adelaide/bonython",
                "adelaide/library"}
+# --parts: the short name of each part, in the report's order.
+PARTS = {"given": "given rows", "borrowed": BORROWED, "sift": "SIFT (vpts pairs)",
+         "synthetic": "synthetic hard cases"}
 
 
 def parse_args(argv):
@@ -58,16 +63,26 @@ def parse_args(argv):
     ap.add_argument("--hard-seeds", type=int, default=10)
     ap.add_argument("--quick", action="store_true",
                     help="five given pairs, two SIFT pairs, one seed of the hard cases")
+    ap.add_argument("--parts", default=",".join(PARTS),
+                    help="comma-separated subset of " + ", ".join(PARTS))
+    ap.add_argument("--max-wrong-with-success", type=int,
+                    help="exit with 1 when the default returns more wrong F with success on the "
+                         "parts run, the given rows of another pair left out (no estimator can "
+                         "find their own F in them)")
     args = ap.parse_args(argv)
+    args.parts = args.parts.split(",")
+    unknown = [p for p in args.parts if p not in PARTS]
+    if unknown:
+        ap.error("--parts: unknown %s; choose among %s" % (", ".join(unknown), ", ".join(PARTS)))
     if args.quick:
         args.hard_seeds = 1
     return args
 
 
 def suites(args):
-    """(suite name, [Pair]) for the parts, and the given pairs whose unlabelled rows are another
-    pair's (datasets.rows_of_another_pair: name -> owner and shares), a part of their own; None
-    when the data folder is missing."""
+    """(suite name, [Pair]) for the parts of args.parts, and the given pairs whose unlabelled rows
+    are another pair's (datasets.rows_of_another_pair: name -> owner and shares), a part of their
+    own; None when the data folder is missing."""
     folder = os.path.join(args.data, "magsac_fundamental_pairs")
     if not os.path.isdir(folder):
         return None
@@ -80,12 +95,14 @@ def suites(args):
         given = [p for p in given if p.name in QUICK_PAIRS]
         sift = [p for p in sift if p.name in QUICK_PAIRS][:2]
     matcher = matching.Matcher(args.cache)
-    return [("given rows", pairs.labelled_pairs([p for p in given if p.name not in borrowed],
-                                                matcher)),
-            (BORROWED, pairs.labelled_pairs([p for p in given if p.name in borrowed], matcher)),
-            ("SIFT (vpts pairs)", pairs.labelled_pairs(sift, matcher)),
-            ("synthetic hard cases", hard_cases.f_only_hard_case_pairs(args.hard_seeds))], \
-        borrowed
+    # each part made only when it runs: the SIFT part matches images when the cache lacks them
+    make = {"given": lambda: pairs.labelled_pairs([p for p in given if p.name not in borrowed],
+                                                  matcher),
+            "borrowed": lambda: pairs.labelled_pairs([p for p in given if p.name in borrowed],
+                                                     matcher),
+            "sift": lambda: pairs.labelled_pairs(sift, matcher),
+            "synthetic": lambda: hard_cases.f_only_hard_case_pairs(args.hard_seeds)}
+    return [(PARTS[part], make[part]()) for part in PARTS if part in args.parts], borrowed
 
 
 def run_suite(name, task_pairs):
@@ -225,6 +242,13 @@ def main(argv=None):
     print(targets_table(groups))
     problems = ["%s: no run of %s" % (label, m) for label, rows in groups for m in METHODS
                 if not any(r["method"] == m for r in rows)]
+    wrong = [r for label, rows in groups if label != BORROWED for r in rows
+             if r["method"] == methods.DEFAULT_METHOD
+             and report.confusion_cell(r) == "returned_wrong"]
+    if args.max_wrong_with_success is not None and len(wrong) > args.max_wrong_with_success:
+        problems.append("%s: %d wrong F with success (at most %d): %s" % (
+            methods.DEFAULT_METHOD, len(wrong), args.max_wrong_with_success,
+            ", ".join("%s %s" % (r["suite"], r["pair"]) for r in wrong)))
     for p in problems:
         print("FAILED: " + p)
     print("wrote %s" % args.out)

@@ -19,6 +19,7 @@ import numpy as np
 import bundle_adjustment as bundle
 import covariance_calibration as calibration
 import datasets
+import f_only
 import methods
 import metrics
 import report
@@ -237,6 +238,23 @@ class BundleAdjustmentArguments(unittest.TestCase):
                 bundle.main(argv + ["--data", "/nonexistent"])
             self.assertEqual(stop.exception.code, 2, argv)
             self.assertIn(name, err.getvalue())
+
+
+class FOnlyArguments(unittest.TestCase):
+    """f_only.py's parts by their short names: a bad one stops it with argparse's error (exit 2)
+    naming --parts, before any data is read."""
+
+    def test_parts_by_short_name(self):
+        self.assertEqual(f_only.parse_args([]).parts, list(f_only.PARTS))
+        self.assertEqual(f_only.parse_args(["--parts", "given,sift"]).parts, ["given", "sift"])
+
+    def test_a_bad_part_is_named(self):
+        err = io.StringIO()
+        with contextlib.redirect_stderr(err), self.assertRaises(SystemExit) as stop:
+            f_only.main(["--parts", "given,nope", "--data", "/nonexistent"])
+        self.assertEqual(stop.exception.code, 2)
+        self.assertIn("--parts", err.getvalue())
+        self.assertIn("nope", err.getvalue())
 
 
 class PoseLibOptions(unittest.TestCase):
