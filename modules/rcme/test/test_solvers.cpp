@@ -11,6 +11,7 @@
 #include "geometry/epipolar.hpp"
 #include "geometry/residual_bands.hpp"
 #include "geometry/sampson_gradients.hpp"
+#include "solvers/epipolar_null_space.hpp"
 #include "solvers/essential_five_point.hpp"
 #include "solvers/real_roots.hpp"
 
@@ -23,6 +24,49 @@ namespace opencv_test {
 namespace {
 
 using namespace cv::rcme::detail;
+
+/* The null space of M epipolar equations by elimination (the 7- and 8-point solvers') against
+the one by QR (the 5-point solver's): orthonormal, solving the equations, the same space; both
+turn down equations of which two coincide. */
+template <int M> void expectNullSpacesAgree(cv::RNG& rng)
+{
+    for (int trial = 0; trial < 500; ++trial) {
+        Eigen::Vector3d x1[M], x2[M];
+        for (int k = 0; k < M; ++k) {
+            x1[k] = Eigen::Vector3d(rng.uniform(-1.5, 1.5), rng.uniform(-1.5, 1.5), 1.0);
+            x2[k] = Eigen::Vector3d(rng.uniform(-1.5, 1.5), rng.uniform(-1.5, 1.5), 1.0);
+        }
+        Eigen::Matrix<double, 9, 9 - M> byQr, byElimination;
+        ASSERT_TRUE(epipolarNullSpace<M>(x1, x2, 1e-5, byQr)) << M << " equations, trial " << trial;
+        ASSERT_TRUE(epipolarNullSpaceByElimination<M>(x1, x2, 1e-5, byElimination))
+            << M << " equations, trial " << trial;
+        const Eigen::Matrix<double, 9 - M, 9 - M> gram = byElimination.transpose() * byElimination;
+        EXPECT_LT((gram - decltype(gram)::Identity()).norm(), 1e-12);
+        for (int k = 0; k < M; ++k)
+            for (int f = 0; f < 9 - M; ++f) {
+                const Eigen::Matrix3d F =
+                    Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(
+                        byElimination.col(f).data());
+                EXPECT_LT(std::abs(x2[k].dot(F * x1[k])), 1e-12)
+                    << M << " equations, trial " << trial;
+            }
+        // The QR basis's part outside the elimination's space.
+        EXPECT_LT((byQr - byElimination * (byElimination.transpose() * byQr)).norm(), 1e-9)
+            << M << " equations, trial " << trial;
+
+        x1[M - 1] = x1[M - 2];
+        x2[M - 1] = x2[M - 2];
+        EXPECT_FALSE(epipolarNullSpace<M>(x1, x2, 1e-5, byQr));
+        EXPECT_FALSE(epipolarNullSpaceByElimination<M>(x1, x2, 1e-5, byElimination));
+    }
+}
+
+TEST(Rcme_EpipolarNullSpace, elimination_spans_the_qr_null_space)
+{
+    cv::RNG rng(7);
+    expectNullSpacesAgree<7>(rng);
+    expectNullSpacesAgree<8>(rng);
+}
 
 //! Coefficients (ascending) of prod (x - roots[k]) times `scale`.
 std::vector<double> fromRoots(const std::vector<double>& roots, double scale = 1.0)

@@ -13,6 +13,21 @@ namespace cv {
 namespace rcme {
 namespace detail {
 
+/** The epipolar equation x2^T F x1 = 0 of one correspondence as 9 coefficients over the
+row-major entries of F, scaled to unit norm. False when they are zero or not finite. */
+inline bool unitEpipolarEquation(const Eigen::Vector3d& x1, const Eigen::Vector3d& x2,
+                                 double* coefficients)
+{
+    Eigen::Map<Eigen::Matrix<double, 9, 1>> row(coefficients);
+    for (int r = 0; r < 3; ++r)
+        row.template segment<3>(3 * r) = x2(r) * x1;
+    const double norm = row.norm();
+    if (!(norm > 0) || !std::isfinite(norm))
+        return false;
+    row /= norm;
+    return true;
+}
+
 /** The null space of the M epipolar equations x2[k]^T F x1[k] = 0 (M = 5, 7 or 8), each a row
 of a Mx9 matrix A over the row-major entries of F, scaled to unit norm: the last 9 - M columns of
 Q in the QR decomposition (column pivoting) of A^T, orthonormal. False when the equations are
@@ -24,14 +39,9 @@ bool epipolarNullSpace(const Eigen::Vector3d* x1, const Eigen::Vector3d* x2, dou
                        Eigen::Matrix<double, 9, 9 - M>& basis)
 {
     Eigen::Matrix<double, 9, M> At;
-    for (int k = 0; k < M; ++k) {
-        for (int r = 0; r < 3; ++r)
-            At.template block<3, 1>(3 * r, k) = x2[k](r) * x1[k];
-        const double norm = At.col(k).norm();
-        if (!(norm > 0) || !std::isfinite(norm))
+    for (int k = 0; k < M; ++k)
+        if (!unitEpipolarEquation(x1[k], x2[k], At.col(k).data()))
             return false;
-        At.col(k) /= norm;
-    }
     const Eigen::ColPivHouseholderQR<Eigen::Matrix<double, 9, M>> qr(At);
     if (!(std::abs(qr.matrixQR()(M - 1, M - 1)) > rankTolerance * std::abs(qr.matrixQR()(0, 0))))
         return false;
@@ -39,6 +49,72 @@ bool epipolarNullSpace(const Eigen::Vector3d* x1, const Eigen::Vector3d* x2, dou
     basis.setZero();
     basis.template bottomRows<9 - M>().setIdentity();
     basis.applyOnTheLeft(qr.householderQ());
+    return basis.allFinite();
+}
+
+/** The same null space by Gaussian elimination with full pivoting on the Mx9 matrix A (each row
+scaled to unit norm): the basis solves A x = 0 with each free entry in turn 1, then is made
+orthonormal. False when the equations are not independent: the last pivot at most
+`rankTolerance` times the first. The 7- and 8-point solvers' (a fraction of the QR's cost); the
+5-point solver keeps the QR, whose answers with K the benchmark reports (doc/performance.md,
+"The loop's own cost"). */
+template <int M>
+bool epipolarNullSpaceByElimination(const Eigen::Vector3d* x1, const Eigen::Vector3d* x2,
+                                    double rankTolerance, Eigen::Matrix<double, 9, 9 - M>& basis)
+{
+    double A[M][9];
+    for (int k = 0; k < M; ++k)
+        if (!unitEpipolarEquation(x1[k], x2[k], A[k]))
+            return false;
+    int column[9] = {0, 1, 2, 3, 4, 5, 6, 7, 8}; // column[j]: the entry of F in place j
+    double firstPivot = 0;
+    for (int k = 0; k < M; ++k) {
+        int bestRow = k, bestCol = k;
+        double best = 0;
+        for (int i = k; i < M; ++i)
+            for (int j = k; j < 9; ++j)
+                if (std::abs(A[i][j]) > best) {
+                    best = std::abs(A[i][j]);
+                    bestRow = i;
+                    bestCol = j;
+                }
+        if (k == 0)
+            firstPivot = best;
+        if (!(best > rankTolerance * firstPivot))
+            return false;
+        if (bestRow != k)
+            for (int j = 0; j < 9; ++j)
+                std::swap(A[k][j], A[bestRow][j]);
+        if (bestCol != k) {
+            for (int i = 0; i < M; ++i)
+                std::swap(A[i][k], A[i][bestCol]);
+            std::swap(column[k], column[bestCol]);
+        }
+        for (int i = k + 1; i < M; ++i) {
+            const double factor = A[i][k] / A[k][k];
+            for (int j = k; j < 9; ++j)
+                A[i][j] -= factor * A[k][j];
+        }
+    }
+    for (int f = 0; f < 9 - M; ++f) {
+        double x[9] = {};
+        x[M + f] = 1;
+        for (int k = M - 1; k >= 0; --k) {
+            double sum = 0;
+            for (int j = k + 1; j < 9; ++j)
+                sum += A[k][j] * x[j];
+            x[k] = -sum / A[k][k];
+        }
+        for (int j = 0; j < 9; ++j)
+            basis(column[j], f) = x[j];
+    }
+    // Gram-Schmidt, twice for the accuracy of Householder's orthonormal columns.
+    for (int f = 0; f < 9 - M; ++f) {
+        for (int pass = 0; pass < 2; ++pass)
+            for (int g = 0; g < f; ++g)
+                basis.col(f) -= basis.col(g).dot(basis.col(f)) * basis.col(g);
+        basis.col(f).normalize();
+    }
     return basis.allFinite();
 }
 

@@ -13,7 +13,7 @@ bool fundamentalFromEightPoints(const Eigen::Vector3d* x1, const Eigen::Vector3d
                                 Eigen::Matrix3d& F)
 {
     Eigen::Matrix<double, 9, 1> f;
-    if (!epipolarNullSpace<8>(x1, x2, 1e-5, f))
+    if (!epipolarNullSpaceByElimination<8>(x1, x2, 1e-5, f))
         return false;
     F << f(0), f(1), f(2), f(3), f(4), f(5), f(6), f(7), f(8);
     F /= F.norm();

@@ -93,7 +93,7 @@ int fundamentalFromSevenPoints(const Eigen::Vector3d* x1, const Eigen::Vector3d*
     // A third (near) null direction means the sample does not determine the pencil:
     // coincident, collinear or otherwise degenerate points (the 8-point solver's tolerance).
     Eigen::Matrix<double, 9, 2> pencil;
-    if (!epipolarNullSpace<7>(x1, x2, 1e-5, pencil))
+    if (!epipolarNullSpaceByElimination<7>(x1, x2, 1e-5, pencil))
         return 0;
     Eigen::Matrix3d F1, F2;
     for (int r = 0; r < 3; ++r)
