@@ -11,7 +11,9 @@
 #ifdef RCME_STANDALONE_TESTS
 
 #include "estimation/model_fit.hpp"
+#include "framework/component_factories.hpp"
 #include "framework/estimator_factory.hpp"
+#include "framework/ransac_loop.hpp"
 #include "framework/refinement.hpp"
 #include "geometry/epipolar.hpp"
 #include "test_internal_helpers.hpp"
@@ -67,6 +69,30 @@ TEST(Rcme_FinalFit, returns_the_least_squares_fit_of_its_own_mask)
     EXPECT_LT(decrease, 0.25 * kSigma * kSigma);
 }
 
+/* A generic scene without K, half of its points true, as the pipeline sees it: its components,
+and the true F refined as the selected model is (the F the final fit starts from). */
+struct SceneWithoutK
+{
+    SceneWithoutK(int points, int seed)
+        : scene(testScene(SCENE_GENERIC, seed, 0.5, 1.0, points)),
+          data(makeTwoViewData(scene.points1, scene.points2, noArray(), Params())),
+          components(createEstimator(Params(), data)),
+          refinement(*components.scorer, components.refiner.get())
+    {
+        Scorer& scorer = *components.scorer;
+        cv2eigen(scene.F, entry.model.F);
+        scorer.classify(data, entry.model, entry.inliers);
+        entry.score = scorer.score(data, entry.model);
+        refinement.refineSelected(data, entry);
+    }
+
+    SyntheticScene scene;
+    TwoViewData data;
+    EstimatorComponents components;
+    Refinement refinement;
+    Fit entry;
+};
+
 /* Without K the final fit is kept only as a refinement is kept: 40 points, half of them true,
 where the fit's rounds drop inliers of high leverage and often leave F at a higher truncated cost
 than the F they started from. From the true F refined as the selected model is: the F returned is
@@ -76,17 +102,11 @@ TEST(Rcme_FinalFit, without_k_a_final_fit_the_scorer_rates_worse_is_not_kept)
 {
     int undone = 0, kept = 0;
     for (int seed = 0; seed < 20; ++seed) {
-        const SyntheticScene scene = testScene(SCENE_GENERIC, seed, 0.5, 1.0, 40);
-        const Params params;
-        const TwoViewData data = makeTwoViewData(scene.points1, scene.points2, noArray(), params);
-        const EstimatorComponents components = createEstimator(params, data);
-        Scorer& scorer = *components.scorer;
-        const Refinement refinement(scorer, components.refiner.get());
-        Fit entry;
-        cv2eigen(scene.F, entry.model.F);
-        scorer.classify(data, entry.model, entry.inliers);
-        entry.score = scorer.score(data, entry.model);
-        refinement.refineSelected(data, entry);
+        const SceneWithoutK c(40, seed);
+        const TwoViewData& data = c.data;
+        Scorer& scorer = *c.components.scorer;
+        const Refinement& refinement = c.refinement;
+        const Fit& entry = c.entry;
 
         Model plain = entry.model;
         std::vector<uchar> plainInliers = entry.inliers;
@@ -113,6 +133,50 @@ TEST(Rcme_FinalFit, without_k_a_final_fit_the_scorer_rates_worse_is_not_kept)
     }
     EXPECT_GE(undone, 5);
     EXPECT_GE(kept, 1);
+}
+
+/* The final fit stage without K (components/final_fit.cpp) chooses: where the outliers can have
+put a point into the band by chance (at least one expected), the plain final fit, whatever the
+scorer says of it; where they cannot, the fit kept as a refinement is kept. 40 points half true
+(20 outliers, under one expected) and 500 points half true (250 outliers, several expected), from
+the true F refined as the selected model is. */
+TEST(Rcme_FinalFit, without_k_the_stage_keeps_the_plain_fit_where_chance_inliers_are_expected)
+{
+    int differ[2] = {0, 0}; // seeds where the two fits differ, per scene size
+    for (const int points : {40, 500})
+        for (int seed = 0; seed < 10; ++seed) {
+            const SceneWithoutK c(points, seed);
+            const TwoViewData& data = c.data;
+            Scorer& scorer = *c.components.scorer;
+            const Refinement& refinement = c.refinement;
+            const Fit& entry = c.entry;
+            const double outliers =
+                static_cast<double>(std::count(entry.inliers.begin(), entry.inliers.end(), 0));
+            const bool chanceInliers = outliers * chanceOfBand(data, data.threshold) >= 1.0;
+            ASSERT_EQ(chanceInliers, points == 500) << points << " points, seed " << seed;
+
+            Model plain = entry.model, kept = entry.model;
+            std::vector<uchar> plainInliers = entry.inliers, keptInliers = entry.inliers;
+            refinement.finalFit(data, plain, plainInliers);
+            refinement.finalFitUnlessWorse(data, kept, keptInliers);
+            differ[points == 500] += !(plain.F == kept.F);
+
+            Estimate estimate;
+            estimate.model = entry.model;
+            estimate.score = entry.score;
+            estimate.mask = entry.inliers;
+            const SearchResult search;
+            const StageContext context{data, search, scorer, refinement, *c.components.space};
+            const StageOutcome outcome = createFinalFit()->run(context, estimate);
+            ASSERT_TRUE(outcome.model && outcome.inliers);
+            EXPECT_TRUE(outcome.model->F == (chanceInliers ? plain.F : kept.F))
+                << points << " points, seed " << seed;
+            EXPECT_EQ(*outcome.inliers, chanceInliers ? plainInliers : keptInliers)
+                << points << " points, seed " << seed;
+        }
+    // Each side has seeds where the choice matters.
+    EXPECT_GE(differ[0], 5);
+    EXPECT_GE(differ[1], 3);
 }
 
 } // namespace
