@@ -8,6 +8,7 @@
 #include <Eigen/QR>
 
 #include <cmath>
+#include <utility>
 
 namespace cv {
 namespace rcme {
