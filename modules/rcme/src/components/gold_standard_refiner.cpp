@@ -44,7 +44,7 @@ public:
                   FinalModel kind) override
     {
         constexpr int kMaxRounds = 4, kMaxSubsetRounds = 12, kRoundsAfterSubset = 3;
-        iterations_ = kind == FinalModel::kFitted ? maxIterations_ : 0;
+        const int iterations = kind == FinalModel::kFitted ? maxIterations_ : 0;
         selection_ = mask;
         int rounds = kMaxRounds;
         const size_t stride = subsetStride(data.points1.size());
@@ -53,12 +53,12 @@ public:
             std::vector<uchar> subsetSelection;
             for (size_t i = 0; i < selection_.size(); i += stride)
                 subsetSelection.push_back(selection_[i]);
-            if (settleBand(subset, subsetSelection, model, kMaxSubsetRounds)) {
+            if (settleBand(subset, subsetSelection, model, kMaxSubsetRounds, iterations)) {
                 takeBand(data, model.F, selection_);
                 rounds = kRoundsAfterSubset;
             }
         }
-        if (!settleBand(data, selection_, model, rounds))
+        if (!settleBand(data, selection_, model, rounds, iterations))
             return;
         std::fill(mask.begin(), mask.end(), 0);
         for (int i : finalInliers_)
@@ -74,15 +74,15 @@ private:
                                   band);
     }
 
-    // Fits on `selection` and takes the fit's band as the next selection, until it no longer
-    // changes or after `maxRounds` fits; finalInliers_ are the points of the last fit. False when
-    // no fit was possible.
+    // Fits on `selection` (`iterations` of least squares each) and takes the fit's band as the
+    // next selection, until it no longer changes or after `maxRounds` fits; finalInliers_ are the
+    // points of the last fit. False when no fit was possible.
     bool settleBand(const TwoViewData& data, std::vector<uchar>& selection, Model& model,
-                    int maxRounds)
+                    int maxRounds, int iterations)
     {
         finalInliers_.clear();
         for (int round = 0; round < maxRounds; ++round) {
-            if (!fitFinal(data, selection, model, /*firstFit=*/round == 0))
+            if (!fitFinal(data, selection, model, iterations, /*firstFit=*/round == 0))
                 break;
             finalInliers_ = confirmed_;
             if (round + 1 == maxRounds)
@@ -100,7 +100,7 @@ private:
     // unchanged) when the points do not determine the model, or when a refit after the first is
     // undone (below).
     bool fitFinal(const TwoViewData& data, const std::vector<uchar>& selection, Model& model,
-                  bool firstFit)
+                  int iterations, bool firstFit)
     {
         const std::vector<uchar>* chosen = &selection;
         if (model.motion()) {
@@ -120,7 +120,7 @@ private:
         maskIndices(*chosen, inliers_);
         Model fitted = model;
         const ModelForm form = space_->formOf(model);
-        if (!fitFinalModelOn(data, form, inliers_, iterations_, fitted, confirmed_))
+        if (!fitFinalModelOn(data, form, inliers_, iterations, fitted, confirmed_))
             return false;
         // Where the points do not determine the motion (a pure rotation leaves t free, when the
         // degeneracy test is off), the refit may turn t into the decomposition that puts the
@@ -150,7 +150,6 @@ private:
     std::vector<uchar> selection_, band_, inFront_;
     std::vector<int> confirmed_, finalInliers_;
     int maxIterations_;
-    int iterations_ = 0; // the final fit's: maxIterations_, or 0 for a held model
     std::vector<int> inliers_;
 };
 

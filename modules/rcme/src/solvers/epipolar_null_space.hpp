@@ -34,7 +34,8 @@ of a Mx9 matrix A over the row-major entries of F, scaled to unit norm: the last
 Q in the QR decomposition (column pivoting) of A^T, orthonormal. False when the equations are
 not independent: |R(M-1, M-1)| / |R(0, 0)|, an estimate of A's smallest to largest singular
 value, at most `rankTolerance` (coincident, collinear or otherwise degenerate points). A third of
-the cost of the SVD of A or of the eigen decomposition of A^T A, which the solvers used before. */
+the cost of the SVD of A or of the eigen decomposition of A^T A, which the solvers used before;
+the 5-point solver's (the 7- and 8-point solvers take epipolarNullSpaceByElimination below). */
 template <int M>
 bool epipolarNullSpace(const Eigen::Vector3d* x1, const Eigen::Vector3d* x2, double rankTolerance,
                        Eigen::Matrix<double, 9, 9 - M>& basis)
