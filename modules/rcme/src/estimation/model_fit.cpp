@@ -371,30 +371,43 @@ bool dropUnconfirmedInliers(const TwoViewData& data, const Problem& problem,
                             std::vector<int>& indices)
 {
     constexpr int P = Problem::kDof;
+    constexpr int B = kSampsonBlock;
+    const GatheredPoints& points = gatherPoints(data, indices);
     Eigen::Matrix<double, P, P> JtJ;
     Eigen::Matrix<double, P, 1> Jtr;
-    normalEquations(gatherPoints(data, indices), problem, JtJ, Jtr);
+    normalEquations(points, problem, JtJ, Jtr);
     const Eigen::LDLT<Eigen::Matrix<double, P, P>> information(JtJ);
     if (information.info() != Eigen::Success)
         return false;
     const Eigen::Matrix3d F = problem.current();
     Eigen::Matrix3d dF[P];
     problem.derivatives(dF);
-    Eigen::Matrix<double, 1, P> g;
-    double d = 0;
     const double threshold2 = data.threshold * data.threshold;
-    const size_t before = indices.size();
-    indices.erase(std::remove_if(indices.begin(), indices.end(),
-                                 [&](int i) {
-                                     if (!sampsonDistanceAndGradient<P>(
-                                             F, dF, data.points1[static_cast<size_t>(i)],
-                                             data.points2[static_cast<size_t>(i)], d, g))
-                                         return false;
-                                     const double h = g * information.solve(g.transpose());
-                                     return h > kMaxLeverage || d * d > threshold2 * (1.0 - h);
-                                 }),
-                  indices.end());
-    return indices.size() < before;
+    double distance[B], gradients[P * B];
+    uchar valid[B];
+    Eigen::Matrix<double, 1, P> g;
+    // Kept indices are written back in place: the k-th kept is never past the point read.
+    size_t kept = 0;
+    for (size_t start = 0; start < points.size(); start += B) {
+        const int count = points.blockSize(start);
+        sampsonGradientsOfBlock(F, dF, P, &points.x1[start], &points.y1[start], &points.x2[start],
+                                &points.y2[start], count, distance, gradients, valid);
+        for (int j = 0; j < count; ++j) {
+            bool confirmed = true; // a point without a distance is not judged
+            if (valid[j]) {
+                for (int k = 0; k < P; ++k)
+                    g(k) = gradients[k * B + j];
+                const double h = g * information.solve(g.transpose());
+                const double d = distance[j];
+                confirmed = !(h > kMaxLeverage || d * d > threshold2 * (1.0 - h));
+            }
+            if (confirmed)
+                indices[kept++] = indices[start + static_cast<size_t>(j)];
+        }
+    }
+    const bool removed = kept < indices.size();
+    indices.resize(kept);
+    return removed;
 }
 
 template <class Problem>

@@ -71,15 +71,18 @@ bool epipolarNullSpaceByElimination(const Eigen::Vector3d* x1, const Eigen::Vect
     int column[9] = {0, 1, 2, 3, 4, 5, 6, 7, 8}; // column[j]: the entry of F in place j
     double firstPivot = 0;
     for (int k = 0; k < M; ++k) {
+        // The largest entry by conditional moves (a branch per entry, taken at random, costs
+        // more); the first of equal entries wins.
         int bestRow = k, bestCol = k;
         double best = 0;
         for (int i = k; i < M; ++i)
-            for (int j = k; j < 9; ++j)
-                if (std::abs(A[i][j]) > best) {
-                    best = std::abs(A[i][j]);
-                    bestRow = i;
-                    bestCol = j;
-                }
+            for (int j = k; j < 9; ++j) {
+                const double magnitude = std::abs(A[i][j]);
+                const bool larger = magnitude > best;
+                best = larger ? magnitude : best;
+                bestRow = larger ? i : bestRow;
+                bestCol = larger ? j : bestCol;
+            }
         if (k == 0)
             firstPivot = best;
         if (!(best > rankTolerance * firstPivot))
@@ -98,18 +101,26 @@ bool epipolarNullSpaceByElimination(const Eigen::Vector3d* x1, const Eigen::Vect
                 A[i][j] -= factor * A[k][j];
         }
     }
-    for (int f = 0; f < 9 - M; ++f) {
-        double x[9] = {};
-        x[M + f] = 1;
-        for (int k = M - 1; k >= 0; --k) {
-            double sum = 0;
-            for (int j = k + 1; j < 9; ++j)
-                sum += A[k][j] * x[j];
-            x[k] = -sum / A[k][k];
-        }
-        for (int j = 0; j < 9; ++j)
-            basis(column[j], f) = x[j];
+    // Back substitution for every free entry at once, x[j][f] the solution whose free entry f is
+    // 1: a row of x is then read whole where it was written whole (solved one after the other,
+    // each solution's entries were written one at a time and read two at a time, and every read
+    // waited for the store). At least two lanes for the same reason; each lane's arithmetic is
+    // that of its own solution.
+    constexpr int kLanes = 9 - M < 2 ? 2 : 9 - M;
+    double x[9][kLanes] = {};
+    for (int f = 0; f < 9 - M; ++f)
+        x[M + f][f] = 1;
+    for (int k = M - 1; k >= 0; --k) {
+        double sum[kLanes] = {};
+        for (int j = k + 1; j < 9; ++j)
+            for (int f = 0; f < kLanes; ++f)
+                sum[f] += A[k][j] * x[j][f];
+        for (int f = 0; f < kLanes; ++f)
+            x[k][f] = -sum[f] / A[k][k];
     }
+    for (int f = 0; f < 9 - M; ++f)
+        for (int j = 0; j < 9; ++j)
+            basis(column[j], f) = x[j][f];
     // Gram-Schmidt, twice for the accuracy of Householder's orthonormal columns.
     for (int f = 0; f < 9 - M; ++f) {
         for (int pass = 0; pass < 2; ++pass)
