@@ -382,25 +382,46 @@ bool dropUnconfirmedInliers(const TwoViewData& data, const Problem& problem,
     const Eigen::Matrix3d F = problem.current();
     Eigen::Matrix3d dF[P];
     problem.derivatives(dF);
+    // h = g^T (J^T J)^-1 g = w^T D^+ w with w = L^-1 P g (the factors P^T L D L^T P = J^T J; D^+
+    // inverts the pivots that LDLT's solve inverts, the others are zero), a block of points at a
+    // time: one triangular solve per point, vectorized over the block, in place of a solve per
+    // point.
+    const Eigen::Matrix<double, P, P> L = information.matrixL();
+    double inverseD[P];
+    int permuted[P];
+    for (int k = 0; k < P; ++k) {
+        const double pivot = information.vectorD()(k);
+        inverseD[k] = std::abs(pivot) > std::numeric_limits<double>::min() ? 1.0 / pivot : 0.0;
+        permuted[k] = k;
+    }
+    for (int k = 0; k < P; ++k)
+        std::swap(permuted[k], permuted[information.transpositionsP().coeff(k)]);
     const double threshold2 = data.threshold * data.threshold;
-    double distance[B], gradients[P * B];
+    double distance[B], gradients[P * B], w[P][B], leverage[B];
     uchar valid[B];
-    Eigen::Matrix<double, 1, P> g;
     // Kept indices are written back in place: the k-th kept is never past the point read.
     size_t kept = 0;
     for (size_t start = 0; start < points.size(); start += B) {
         const int count = points.blockSize(start);
         sampsonGradientsOfBlock(F, dF, P, &points.x1[start], &points.y1[start], &points.x2[start],
                                 &points.y2[start], count, distance, gradients, valid);
-        for (int j = 0; j < count; ++j) {
-            bool confirmed = true; // a point without a distance is not judged
-            if (valid[j]) {
-                for (int k = 0; k < P; ++k)
-                    g(k) = gradients[k * B + j];
-                const double h = g * information.solve(g.transpose());
-                const double d = distance[j];
-                confirmed = !(h > kMaxLeverage || d * d > threshold2 * (1.0 - h));
+        for (int j = 0; j < count; ++j)
+            leverage[j] = 0;
+        for (int k = 0; k < P; ++k) {
+            const double* g = &gradients[permuted[k] * B];
+            for (int j = 0; j < count; ++j) {
+                double value = g[j];
+                for (int m = 0; m < k; ++m)
+                    value -= L(k, m) * w[m][j];
+                w[k][j] = value;
+                leverage[j] += value * value * inverseD[k];
             }
+        }
+        for (int j = 0; j < count; ++j) {
+            const double h = leverage[j], d = distance[j];
+            // A point without a distance is not judged.
+            const bool confirmed =
+                !valid[j] || !(h > kMaxLeverage || d * d > threshold2 * (1.0 - h));
             if (confirmed)
                 indices[kept++] = indices[start + static_cast<size_t>(j)];
         }
