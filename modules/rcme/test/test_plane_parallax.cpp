@@ -182,6 +182,51 @@ TEST(Rcme_PlaneParallax, the_quick_search_finds_the_plane_among_more_outliers)
     EXPECT_LT((H - Eigen::Matrix3d::Identity()).norm(), 1e-9);
 }
 
+// The vectorized transfer test (the AVX2 clone where the machine has it) marks the points the
+// per-point expression does, on any subrange, points near the threshold's edge included.
+TEST(Rcme_PlaneParallax, the_transfer_kernel_marks_what_the_per_point_test_does)
+{
+    cv::RNG rng(11);
+    Eigen::Matrix3d H;
+    H << 0.97, 0.05, 12.0, -0.03, 1.02, -7.0, 2e-5, -3e-5, 1;
+    const double threshold2 = 2.5 * 2.5;
+    std::vector<Point2d> from, to;
+    for (int i = 0; i < 203; ++i) {
+        const Point2d p(rng.uniform(0.0, 1280.0), rng.uniform(0.0, 960.0));
+        const Eigen::Vector3d x = H * Eigen::Vector3d(p.x, p.y, 1);
+        // Offsets from well inside to well outside the threshold, many within a hair of it.
+        const double distance =
+            i % 4 == 0 ? 2.5 * (1 + rng.uniform(-1e-12, 1e-12)) : rng.uniform(0.0, 6.0);
+        const double angle = rng.uniform(0.0, 2 * CV_PI);
+        from.push_back(p);
+        to.emplace_back(x.x() / x.z() + distance * std::cos(angle),
+                        x.y() / x.z() + distance * std::sin(angle));
+    }
+    const auto perPoint = [&](size_t i) {
+        const Eigen::Vector3d x = H * Eigen::Vector3d(from[i].x, from[i].y, 1.0);
+        const double dx = x.x() / x.z() - to[i].x, dy = x.y() / x.z() - to[i].y;
+        return dx * dx + dy * dy <= threshold2;
+    };
+    int nearHeld = 0, nearNotHeld = 0;
+    for (const size_t begin : {size_t(0), size_t(5), size_t(170)}) {
+        const size_t end = std::min(from.size(), begin + cv::rcme::detail::kTransferBlock);
+        uchar held[cv::rcme::detail::kTransferBlock];
+        const int count =
+            cv::rcme::detail::markTransferredWithin(H, from, to, begin, end, threshold2, held);
+        int expected = 0;
+        for (size_t i = begin; i < end; ++i) {
+            EXPECT_EQ(held[i - begin] != 0, perPoint(i)) << "point " << i;
+            expected += perPoint(i);
+            nearHeld += i % 4 == 0 && perPoint(i);
+            nearNotHeld += i % 4 == 0 && !perPoint(i);
+        }
+        EXPECT_EQ(count, expected) << "from " << begin;
+    }
+    // Points at the edge fall on either side of it.
+    EXPECT_GT(nearHeld, 0);
+    EXPECT_GT(nearNotHeld, 0);
+}
+
 // The quick search's count stops reading once a sample cannot beat the best: whatever the best,
 // a count above it is exact (the search keeps that sample with it) and one that is not stays at or
 // below it (the sample is dropped), wherever the held points lie in the list.

@@ -146,14 +146,18 @@ bool someHomographyHoldsHalf(const std::vector<Point2d>& candidates1,
             if (!homographyOfFour(points1, points2, sample, H))
                 continue;
             // Counting stops once this sample cannot reach half: even if H held every point left,
-            // (byH + left) / (either + left) would stay below it.
+            // (byH + left) / (either + left) would stay below it (and would at the end too).
             int byH = 0, either = 0;
-            const int count = static_cast<int>(points1.size());
-            for (int i = 0; i < count && 2 * (byH + count - i) >= either + count - i; ++i) {
-                const size_t k = static_cast<size_t>(i);
-                const bool held = isTransferredWithin(H, points1[k], points2[k], threshold2);
-                byH += held;
-                either += held || byF[k];
+            const size_t count = points1.size();
+            uchar held[kTransferBlock];
+            for (size_t begin = 0;
+                 begin < count && 2 * (byH + static_cast<long long>(count - begin)) >=
+                                      either + static_cast<long long>(count - begin);
+                 begin += kTransferBlock) {
+                const size_t end = std::min(count, begin + kTransferBlock);
+                byH += markTransferredWithin(H, points1, points2, begin, end, threshold2, held);
+                for (size_t k = begin; k < end; ++k)
+                    either += held[k - begin] || byF[k];
             }
             if (either > 0 && 2 * byH >= either)
                 return true;

@@ -5,6 +5,7 @@
 
 #include "framework/random.hpp"
 #include "geometry/statistics.hpp"
+#include "geometry/vector_clones.hpp"
 
 #include <algorithm>
 
@@ -37,14 +38,42 @@ bool keepsOrientation(const std::vector<Point2d>& from, const std::vector<Point2
     return true;
 }
 
+// The row-major entries of H and the points as (x, y) pairs; each lane's arithmetic is one
+// point's, in the order of the expression below, on every clone.
+RCME_VECTOR_CLONES RCME_SPECULATIVE_MATH int transferredLoop(const double* h, const double* a,
+                                                             const double* b, size_t begin,
+                                                             size_t end, double threshold2,
+                                                             uchar* held)
+{
+    const double h00 = h[0], h01 = h[1], h02 = h[2], h10 = h[3], h11 = h[4], h12 = h[5], h20 = h[6],
+                 h21 = h[7], h22 = h[8];
+    int count = 0;
+    for (size_t i = begin; i < end; ++i) {
+        const double x = a[2 * i], y = a[2 * i + 1];
+        const double u = h00 * x + h01 * y + h02;
+        const double v = h10 * x + h11 * y + h12;
+        const double w = h20 * x + h21 * y + h22;
+        const double dx = u / w - b[2 * i], dy = v / w - b[2 * i + 1];
+        const bool within = dx * dx + dy * dy <= threshold2;
+        held[i - begin] = within;
+        count += within;
+    }
+    return count;
+}
+
 // The points of `to` within squared transfer distance `threshold2` of H applied to `from`.
 void transferInliers(const std::vector<Point2d>& from, const std::vector<Point2d>& to,
                      const Eigen::Matrix3d& H, double threshold2, std::vector<int>& inliers)
 {
     inliers.clear();
-    for (size_t i = 0; i < from.size(); ++i)
-        if (isTransferredWithin(H, from[i], to[i], threshold2))
-            inliers.push_back(static_cast<int>(i));
+    uchar held[kTransferBlock];
+    for (size_t begin = 0; begin < from.size(); begin += kTransferBlock) {
+        const size_t end = std::min(from.size(), begin + kTransferBlock);
+        markTransferredWithin(H, from, to, begin, end, threshold2, held);
+        for (size_t i = begin; i < end; ++i)
+            if (held[i - begin])
+                inliers.push_back(static_cast<int>(i));
+    }
 }
 
 /* Least squares (the direct linear transform) on the correspondences `indices`: the unit vector h
@@ -80,16 +109,30 @@ bool homographyOfMany(const std::vector<Point2d>& from, const std::vector<Point2
 
 } // namespace
 
+int markTransferredWithin(const Eigen::Matrix3d& H, const std::vector<Point2d>& from,
+                          const std::vector<Point2d>& to, size_t begin, size_t end,
+                          double threshold2, uchar* held)
+{
+    CV_DbgAssert(from.size() == to.size() && begin <= end && end <= from.size());
+    if (begin >= end)
+        return 0;
+    const Eigen::Matrix<double, 3, 3, Eigen::RowMajor> h = H;
+    return transferredLoop(h.data(), &from[0].x, &to[0].x, begin, end, threshold2, held);
+}
+
 int transferredUnlessBeaten(const std::vector<Point2d>& from, const std::vector<Point2d>& to,
                             const Eigen::Matrix3d& H, double threshold2, int toBeat)
 {
-    const int count = static_cast<int>(from.size());
-    int held = 0;
-    for (int i = 0; i < count && held + (count - i) > toBeat; ++i) {
-        const size_t k = static_cast<size_t>(i);
-        held += isTransferredWithin(H, from[k], to[k], threshold2);
-    }
-    return held;
+    // Stops a block at a time: once the points left cannot lift the count above toBeat, none
+    // that follow can either.
+    const size_t count = from.size();
+    uchar held[kTransferBlock];
+    int total = 0;
+    for (size_t begin = 0; begin < count && total + static_cast<long long>(count - begin) > toBeat;
+         begin += kTransferBlock)
+        total += markTransferredWithin(H, from, to, begin, std::min(count, begin + kTransferBlock),
+                                       threshold2, held);
+    return total;
 }
 
 Normalization normalizeInPlace(std::vector<Point2d>& points)
