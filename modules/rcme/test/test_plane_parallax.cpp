@@ -182,6 +182,47 @@ TEST(Rcme_PlaneParallax, the_quick_search_finds_the_plane_among_more_outliers)
     EXPECT_LT((H - Eigen::Matrix3d::Identity()).norm(), 1e-9);
 }
 
+// The four-point homography from the two projective bases: exact on four points of a known H
+// (perspective, a mirror included), none where three of the four lie on a line in either image.
+TEST(Rcme_PlaneParallax, the_four_point_homography_is_exact_and_refuses_collinear_points)
+{
+    cv::RNG rng(5);
+    const int sample[4] = {0, 1, 2, 3};
+    for (int trial = 0; trial < 50; ++trial) {
+        Eigen::Matrix3d truth;
+        truth << rng.uniform(-2.0, 2.0), rng.uniform(-2.0, 2.0), rng.uniform(-1.0, 1.0),
+            rng.uniform(-2.0, 2.0), rng.uniform(-2.0, 2.0), rng.uniform(-1.0, 1.0),
+            rng.uniform(-0.5, 0.5), rng.uniform(-0.5, 0.5), 1;
+        std::vector<Point2d> from, to;
+        for (int k = 0; k < 4; ++k) {
+            const Point2d p(rng.uniform(-1.5, 1.5), rng.uniform(-1.5, 1.5));
+            const Eigen::Vector3d x = truth * Eigen::Vector3d(p.x, p.y, 1);
+            from.push_back(p);
+            to.emplace_back(x.x() / x.z(), x.y() / x.z());
+        }
+        Eigen::Matrix3d H;
+        ASSERT_TRUE(cv::rcme::detail::homographyOfFour(from, to, sample, H)) << trial;
+        EXPECT_DOUBLE_EQ(H(2, 2), 1.0);
+        for (int k = 0; k < 4; ++k) {
+            const Eigen::Vector3d x = H * Eigen::Vector3d(from[k].x, from[k].y, 1);
+            EXPECT_NEAR(x.x() / x.z(), to[k].x, 1e-8 * (1 + std::abs(to[k].x))) << trial;
+            EXPECT_NEAR(x.y() / x.z(), to[k].y, 1e-8 * (1 + std::abs(to[k].y))) << trial;
+        }
+        // Every triple on a line in turn, in the first image and then in the second.
+        for (int image = 0; image < 2; ++image)
+            for (int left = 0; left < 4; ++left) {
+                std::vector<Point2d> a = from, b = to;
+                std::vector<Point2d>& moved = image == 0 ? a : b;
+                const int i = (left + 1) % 4, j = (left + 2) % 4, k = (left + 3) % 4;
+                moved[static_cast<size_t>(k)] =
+                    moved[static_cast<size_t>(i)] +
+                    0.37 * (moved[static_cast<size_t>(j)] - moved[static_cast<size_t>(i)]);
+                EXPECT_FALSE(cv::rcme::detail::homographyOfFour(a, b, sample, H))
+                    << trial << ", image " << image << ", triple without " << left;
+            }
+    }
+}
+
 // The vectorized transfer test (the AVX2 clone where the machine has it) marks the points the
 // per-point expression does, on any subrange, points near the threshold's edge included.
 TEST(Rcme_PlaneParallax, the_transfer_kernel_marks_what_the_per_point_test_does)

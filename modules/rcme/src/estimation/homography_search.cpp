@@ -150,24 +150,55 @@ Normalization normalizeInPlace(std::vector<Point2d>& points)
     return n;
 }
 
+namespace {
+
+/* The projective basis of four points: B with B e_k ~ p_k (k < 3) and B (1, 1, 1) ~ p_4, that is
+B = [p_1 p_2 p_3] diag(lambda) with [p_1 p_2 p_3] lambda = p_4 (homogeneous points). False when
+three of the four lie on a line (a vanishing determinant, relative to Hadamard's bound). */
+bool projectiveBasis(const std::vector<Point2d>& points, const int sample[4], Eigen::Matrix3d& M,
+                     Eigen::Vector3d& lambda)
+{
+    for (int k = 0; k < 3; ++k) {
+        const Point2d& p = points[static_cast<size_t>(sample[k])];
+        M.col(k) << p.x, p.y, 1.0;
+    }
+    const Point2d& q = points[static_cast<size_t>(sample[3])];
+    const Eigen::Vector3d p4(q.x, q.y, 1.0);
+    // Cramer's rule: lambda_k det M is the determinant with column k replaced by p4.
+    const Eigen::Vector3d c01 = M.col(0).cross(M.col(1)), c12 = M.col(1).cross(M.col(2)),
+                          c20 = M.col(2).cross(M.col(0));
+    const double det = c01.dot(M.col(2));
+    const double n0 = M.col(0).norm(), n1 = M.col(1).norm(), n2 = M.col(2).norm(), n4 = p4.norm();
+    constexpr double kCollinear = 1e-10;
+    const Eigen::Vector3d scaled(c12.dot(p4), c20.dot(p4), c01.dot(p4));
+    if (!(std::abs(det) > kCollinear * n0 * n1 * n2) ||
+        !(std::abs(scaled(0)) > kCollinear * n4 * n1 * n2) ||
+        !(std::abs(scaled(1)) > kCollinear * n0 * n4 * n2) ||
+        !(std::abs(scaled(2)) > kCollinear * n0 * n1 * n4))
+        return false;
+    lambda = scaled / det;
+    return true;
+}
+
+} // namespace
+
 bool homographyOfFour(const std::vector<Point2d>& from, const std::vector<Point2d>& to,
                       const int sample[4], Eigen::Matrix3d& H)
 {
-    Eigen::Matrix<double, 8, 8> A;
-    Eigen::Matrix<double, 8, 1> b;
-    for (int k = 0; k < 4; ++k) {
-        const Point2d& p = from[static_cast<size_t>(sample[k])];
-        const Point2d& q = to[static_cast<size_t>(sample[k])];
-        A.row(2 * k) << p.x, p.y, 1, 0, 0, 0, -q.x * p.x, -q.x * p.y;
-        A.row(2 * k + 1) << 0, 0, 0, p.x, p.y, 1, -q.y * p.x, -q.y * p.y;
-        b(2 * k) = q.x;
-        b(2 * k + 1) = q.y;
-    }
-    const Eigen::FullPivLU<Eigen::Matrix<double, 8, 8>> lu(A);
-    if (!lu.isInvertible())
+    // H = B_to B_from^-1, both bases of the sample (Hartley & Zisserman, 2nd ed., ex. 4.1):
+    // closed form, a fraction of solving the eight equations.
+    Eigen::Matrix3d M1, M2;
+    Eigen::Vector3d lambda1, lambda2;
+    if (!projectiveBasis(from, sample, M1, lambda1) || !projectiveBasis(to, sample, M2, lambda2))
         return false;
-    const Eigen::Matrix<double, 8, 1> h = lu.solve(b);
-    H << h(0), h(1), h(2), h(3), h(4), h(5), h(6), h(7), 1.0;
+    Eigen::Matrix3d adjugate1; // adj(M1) = det(M1) M1^-1: rows are cross products of columns
+    adjugate1.row(0) = M1.col(1).cross(M1.col(2)).transpose();
+    adjugate1.row(1) = M1.col(2).cross(M1.col(0)).transpose();
+    adjugate1.row(2) = M1.col(0).cross(M1.col(1)).transpose();
+    H = M2 * lambda2.cwiseQuotient(lambda1).asDiagonal() * adjugate1;
+    if (!(std::abs(H(2, 2)) > 1e-12 * H.norm()))
+        return false;
+    H /= H(2, 2);
     return H.allFinite();
 }
 
