@@ -256,6 +256,15 @@ class FOnlyArguments(unittest.TestCase):
         self.assertIn("--parts", err.getvalue())
         self.assertIn("nope", err.getvalue())
 
+    def test_time_repeats_at_least_one(self):
+        self.assertEqual(f_only.parse_args([]).time_repeats, 1)
+        self.assertEqual(f_only.parse_args(["--time-repeats", "10"]).time_repeats, 10)
+        err = io.StringIO()
+        with contextlib.redirect_stderr(err), self.assertRaises(SystemExit) as stop:
+            f_only.parse_args(["--time-repeats", "0"])
+        self.assertEqual(stop.exception.code, 2)
+        self.assertIn("--time-repeats", err.getvalue())
+
 
 class PoseLibOptions(unittest.TestCase):
     """PoseLib runs at every method's settings: adaptive with no minimum number of samples (its
