@@ -18,6 +18,7 @@
 #include "components/homography_comparison.hpp"
 #include "framework/random.hpp"
 #include "geometry/epipolar.hpp"
+#include "geometry/residual_bands.hpp"
 #include "geometry/statistics.hpp"
 
 #include "opencv2/rcme/opencv_geometry.hpp"
@@ -42,22 +43,25 @@ struct OffPlaneSupport
     Eigen::Matrix3d F = Eigen::Matrix3d::Zero();
 };
 
-int countWithin(const TwoViewData& data, const Eigen::Matrix3d& F, const std::vector<int>& points)
+// The off-plane correspondences: their indices, and their points side by side for the band's
+// vectorized count (countInSampsonBand), which every epipole tried reads.
+struct OffPlanePoints
 {
-    const double thresholdSquared = data.threshold * data.threshold;
-    int count = 0;
-    for (int i : points) {
-        const size_t k = static_cast<size_t>(i);
-        count += sampsonDistanceSquared(F, data.points1[k], data.points2[k]) <= thresholdSquared;
-    }
-    return count;
+    std::vector<int> indices;
+    std::vector<Eigen::Vector2d> points1, points2;
+};
+
+int countWithin(const TwoViewData& data, const Eigen::Matrix3d& F, const OffPlanePoints& points)
+{
+    return countInSampsonBand(F, points.points1, points.points2, data.threshold * data.threshold);
 }
 
 // The epipole that the most off-plane points agree with, among those of kEpipoleSamples pairs
 // (every pair when there are fewer).
 OffPlaneSupport bestEpipole(const TwoViewData& data, const Eigen::Matrix3d& H,
-                            const std::vector<int>& offPlane)
+                            const OffPlanePoints& offPlanePoints)
 {
+    const std::vector<int>& offPlane = offPlanePoints.indices;
     OffPlaneSupport best;
     const size_t m = offPlane.size();
     const long long pairs = static_cast<long long>(m) * static_cast<long long>(m - 1) / 2;
@@ -87,7 +91,7 @@ OffPlaneSupport bestEpipole(const TwoViewData& data, const Eigen::Matrix3d& H,
         if (!(norm > 0) || !F.allFinite())
             continue;
         F /= norm;
-        const int agreeing = countWithin(data, F, offPlane);
+        const int agreeing = countWithin(data, F, offPlanePoints);
         if (agreeing > best.agreeing) {
             best.agreeing = agreeing;
             best.F = F;
@@ -106,11 +110,14 @@ StageOutcome resolvePlaneAndParallax(const TwoViewData& data, Scorer& scorer,
     // every epipole.
     const double offPlaneCut =
         kOffPlaneThresholds * kOffPlaneThresholds * data.threshold * data.threshold;
-    std::vector<int> offPlane;
+    OffPlanePoints offPlane;
     for (size_t i = 0; i < data.points1.size(); ++i)
-        if (!(homographySampsonSquared(H, data.points1[i], data.points2[i]) <= offPlaneCut))
-            offPlane.push_back(static_cast<int>(i));
-    const int m = static_cast<int>(offPlane.size());
+        if (!(homographySampsonSquared(H, data.points1[i], data.points2[i]) <= offPlaneCut)) {
+            offPlane.indices.push_back(static_cast<int>(i));
+            offPlane.points1.push_back(data.points1[i]);
+            offPlane.points2.push_back(data.points2[i]);
+        }
+    const int m = static_cast<int>(offPlane.indices.size());
     // Bonferroni over the epipoles the search tries, not over every pair, which it does not try
     // beyond kEpipoleSamples: with 150-165 off-plane points the bound is 12-13 agreeing points
     // instead of 14-15, which 20 true points a few pixels off the plane reach (doc/f_only.md,
