@@ -8,6 +8,7 @@
 #include "geometry/vector_clones.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 namespace cv {
 namespace rcme {

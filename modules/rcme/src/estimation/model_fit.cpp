@@ -15,6 +15,10 @@
 #include "geometry/sampson_gradients.hpp"
 #include "geometry/statistics.hpp"
 
+#include <cmath>
+#include <limits>
+#include <utility>
+
 namespace cv {
 namespace rcme {
 namespace detail {
